@@ -1,0 +1,74 @@
+// `conform info FILE`: points, faces, normals, bounding box and non-finite count of a cloud or mesh file.
+
+#include <cstdio>
+#include <iostream>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/info.h"
+#include "json_values.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+class InfoCommand : public Command {
+ public:
+  void configure(CLI::App& command) override {
+    command.add_option("file", options_.path, "Cloud or mesh file (.ply .stl .obj .pcd .xyz .txt .asc .csv)")
+        ->required();
+    command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  int run() override {
+    const InfoResult info = run_info(options_);
+    warn_all(info.warnings);
+    if (json_) {
+      print_json({{"file", info.path},
+                  {"format", info.format},
+                  {"points", info.points},
+                  {"faces", info.faces},
+                  {"has_normals", info.has_normals},
+                  {"non_finite_points", info.non_finite},
+                  {"bounding_box_min_mm", to_json(info.box.min, info.box.empty())},
+                  {"bounding_box_max_mm", to_json(info.box.max, info.box.empty())},
+                  {"bounding_box_size_mm", to_json(info.box.size(), info.box.empty())},
+                  {"surface_area_mm2", info.surface_area_mm2}});
+    } else {
+      print_text(info);
+    }
+    if (info.points == 0) throw Error(info.path + ": holds no points");
+    if (info.non_finite > 0) {
+      throw Error(info.path + ": " + std::to_string(info.non_finite) +
+                  " points have NaN or infinite coordinates; jobs refuse such a file");
+    }
+    return 0;
+  }
+
+ private:
+  static void print_text(const InfoResult& info) {
+    std::printf("file         %s\n", info.path.c_str());
+    std::printf("format       %s\n", info.format.c_str());
+    std::printf("points       %zu\n", info.points);
+    std::printf("faces        %zu\n", info.faces);
+    std::printf("normals      %s\n", info.has_normals ? "yes" : "no");
+    std::printf("non-finite   %zu\n", info.non_finite);
+    if (!info.box.empty()) {
+      const auto& lo = info.box.min;
+      const auto& hi = info.box.max;
+      const Eigen::Vector3d size = info.box.size();
+      std::printf("box min mm   %.4f %.4f %.4f\n", lo.x(), lo.y(), lo.z());
+      std::printf("box max mm   %.4f %.4f %.4f\n", hi.x(), hi.y(), hi.z());
+      std::printf("box size mm  %.4f %.4f %.4f\n", size.x(), size.y(), size.z());
+    }
+    if (info.faces > 0) std::printf("area mm2     %.4f\n", info.surface_area_mm2);
+  }
+
+  InfoOptions options_;
+  bool json_ = false;
+};
+
+}  // namespace
+}  // namespace conform::app
+
+CONFORM_COMMAND(InfoCommand, "info", "Show what a cloud or mesh file holds (points, faces, normals, box, NaNs)")

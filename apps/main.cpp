@@ -1,0 +1,96 @@
+// conform: make tool paths fit the part that is really there.
+// Parses the command line, runs the chosen subcommand and maps what happened to an exit code (DESIGN.md):
+// 0 success, 1 the job ran but did not succeed, 2 bad usage or bad input.
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+#include <pcl/console/print.h>
+
+#include "command.h"
+#include "conform/core/error.h"
+
+namespace conform::app {
+
+std::vector<CommandEntry>& command_registry() {
+  static std::vector<CommandEntry> registry;
+  return registry;
+}
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+
+struct Bound {
+  CLI::App* app;
+  std::unique_ptr<Command> command;
+};
+
+// "generate tube" -> a "generate" group holding a "tube" subcommand; groups are made on first use.
+CLI::App* subcommand_for(CLI::App& root, const std::string& path, const std::string& summary) {
+  CLI::App* parent = &root;
+  std::string rest = path;
+  for (std::size_t space; (space = rest.find(' ')) != std::string::npos; rest = rest.substr(space + 1)) {
+    const std::string group = rest.substr(0, space);
+    CLI::App* existing = nullptr;
+    for (CLI::App* sub : parent->get_subcommands({})) {
+      if (sub->get_name() == group) existing = sub;
+    }
+    if (existing == nullptr) {
+      existing = parent->add_subcommand(group, "");
+      existing->require_subcommand(1);
+    }
+    parent = existing;
+  }
+  return parent->add_subcommand(rest, summary);
+}
+
+}  // namespace
+}  // namespace conform::app
+
+int main(int argc, char** argv) {
+  using namespace conform::app;
+  // PCL's readers print their own complaints; conform reports errors itself, once, naming the file.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+
+  CLI::App root{
+      "conform: scan registration and deformation compensation for manufacturing.\n"
+      "Lengths are millimetres; flags and JSON keys in degrees say so (_deg).\n"
+      "Exit codes: 0 success, 1 the job ran but did not succeed, 2 bad usage or bad input.",
+      "conform"};
+  root.require_subcommand(1);
+  root.set_version_flag("--version", "conform 0.1.0");
+
+  auto entries = command_registry();
+  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+  std::vector<Bound> bound;
+  for (const CommandEntry& entry : entries) {
+    CLI::App* app = subcommand_for(root, entry.path, entry.summary);
+    bound.push_back({app, entry.make()});
+    bound.back().command->configure(*app);
+  }
+
+  try {
+    root.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = root.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+
+  try {
+    for (Bound& b : bound) {
+      if (b.app->parsed()) return b.command->run();
+    }
+  } catch (const conform::Error& e) {
+    std::cerr << "conform: error: " << e.what() << std::endl;
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "conform: internal error: " << e.what() << std::endl;
+    return 1;
+  }
+  return kExitBadInput;
+}

@@ -1,0 +1,60 @@
+#pragma once
+// Reading and writing clouds and meshes, the format chosen by the file's extension (case-insensitive):
+//   .ply  ascii and binary (little/big endian), clouds and meshes, vertex normals (nx, ny, nz)
+//   .stl  ascii and binary, meshes (vertices welded where bit-identical)
+//   .obj  meshes (v, vn, f; polygons fan-triangulated)
+//   .pcd  clouds (PCL's reader and writer), normals as normal_x/y/z
+//   .xyz .txt .asc .csv  point lists: whitespace- or comma-separated, optional header line naming x y z nx ny nz
+// Every reader checks counts against the file's size before allocating and reports errors as conform::Error
+// naming the file and the line or byte where the problem is.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "conform/core/cloud.h"
+#include "conform/core/mesh.h"
+
+namespace conform {
+
+// What to do with points that have a NaN or infinite coordinate.
+enum class NonFinitePolicy {
+  kReject,  // throw conform::Error naming the file, the first bad point and the count
+  kDrop,    // remove them (and the faces that use them), with a warning saying how many
+  kKeep,    // keep them as they are (for `conform info`, which counts them)
+};
+
+struct ReadOptions {
+  NonFinitePolicy non_finite = NonFinitePolicy::kReject;
+};
+
+// What a reader noticed that was not worth an error (dropped points, ignored properties); apps print them.
+struct ReadReport {
+  std::vector<std::string> warnings;
+  std::size_t non_finite_points = 0;  // found in the file (dropped or kept according to the policy)
+};
+
+enum class Encoding { kBinary, kAscii };
+
+struct WriteOptions {
+  Encoding encoding = Encoding::kBinary;  // for .ply and .stl; the other formats are what they are
+  bool double_precision = false;          // .ply vertices as double; ascii formats print 17 digits instead of 9
+};
+
+// Whatever the file holds: vertices, normals if present, faces if it has any (none for point formats).
+Mesh read_geometry(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+// As read_geometry, but the file must hold faces.
+Mesh read_mesh(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+// The file's points (a mesh's vertices), with normals if present.
+Cloud read_cloud(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+
+// Atomic: the file appears complete or not at all. A mesh cannot go to a point format (.xyz, .csv, .pcd) without
+// losing its faces: that is an error; write to_cloud(mesh) on purpose instead.
+void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
+// Points to any format but .stl (which holds only triangles).
+void write_cloud(const std::string& path, const Cloud& cloud, const WriteOptions& options = {});
+
+// Lower-case extension including the dot (".ply"), "" when there is none.
+std::string file_extension(const std::string& path);
+
+}  // namespace conform

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Sets conform up on a fresh Debian machine: installs the Debian packages it needs, configures and builds.
+# Usage: scripts/setup.sh [build-dir] [extra cmake args...]   (default build dir: build)
+# Idempotent: run it again after a pull to rebuild.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=${1:-build}
+shift || true
+
+packages=(cmake ninja-build g++ pkg-config libeigen3-dev libpcl-dev libceres-dev libopencv-dev
+          libgtest-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}" >&2
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B "$build_dir" -G Ninja "$@"
+cmake --build "$build_dir" -j "$(nproc)"

@@ -1,0 +1,105 @@
+#include "conform/core/geometry.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "conform/core/error.h"
+
+namespace conform {
+namespace {
+
+Mesh unit_right_triangle() {
+  Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}};
+  mesh.faces = {{0, 1, 2}};
+  return mesh;
+}
+
+TEST(Geometry, BoundingBoxAndCentroidSkipNonFinitePoints) {
+  Cloud cloud;
+  cloud.points.push_back({1, 2, 3});
+  cloud.points.push_back({-1, 5, 0});
+  cloud.points.push_back({std::numeric_limits<float>::quiet_NaN(), 0, 0});
+  const BoundingBox box = bounding_box(cloud);
+  EXPECT_EQ(box.min, Eigen::Vector3d(-1, 2, 0));
+  EXPECT_EQ(box.max, Eigen::Vector3d(1, 5, 3));
+  EXPECT_EQ(count_non_finite(cloud), 1u);
+  EXPECT_TRUE(centroid(cloud).isApprox(Eigen::Vector3d(0, 3.5, 1.5), 1e-12));
+}
+
+TEST(Geometry, EmptyInputsSayWhatIsWrong) {
+  EXPECT_TRUE(bounding_box(Cloud{}).empty());
+  EXPECT_EQ(bounding_box(Cloud{}).size(), Eigen::Vector3d::Zero());
+  EXPECT_THROW(centroid(Cloud{}), Error);
+}
+
+TEST(Geometry, TransformMovesPointsAndRotatesNormals) {
+  Mesh mesh = unit_right_triangle();
+  mesh.normals = vertex_normals_from_faces(mesh);
+  Eigen::Isometry3d T_b_a = Eigen::Isometry3d::Identity();
+  T_b_a.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  T_b_a.translation() = Eigen::Vector3d(10, 20, 30);
+  const Mesh moved = transformed(mesh, T_b_a);
+  EXPECT_LT((moved.vertices[1] - Eigen::Vector3d(12, 20, 30)).norm(), 1e-12);
+  EXPECT_LT((moved.vertices[2] - Eigen::Vector3d(10, 20, 33)).norm(), 1e-12);
+  EXPECT_LT((moved.normals[0] - Eigen::Vector3d(0, -1, 0)).norm(), 1e-12);  // +z turned about x by 90 degrees
+
+  const Cloud cloud_b = transformed(to_cloud(mesh), T_b_a);
+  EXPECT_LT((cloud_b.points[1].getVector3fMap() - Eigen::Vector3f(12, 20, 30)).norm(), 1e-5f);
+  EXPECT_LT((cloud_b.normals[0].getNormalVector3fMap() - Eigen::Vector3f(0, -1, 0)).norm(), 1e-6f);
+
+  Polyline line{{{0, 0, 0}, {1, 0, 0}}, false};
+  EXPECT_LT((transformed(line, T_b_a).points[1] - Eigen::Vector3d(11, 20, 30)).norm(), 1e-12);
+}
+
+TEST(Mesh, AreasAndNormalsOfAKnownTriangle) {
+  const Mesh mesh = unit_right_triangle();
+  EXPECT_DOUBLE_EQ(face_area(mesh, 0), 3.0);
+  EXPECT_DOUBLE_EQ(surface_area(mesh), 3.0);
+  EXPECT_EQ(face_normal(mesh, 0), Eigen::Vector3d(0, 0, 1));
+  for (const Eigen::Vector3d& n : vertex_normals_from_faces(mesh)) EXPECT_EQ(n, Eigen::Vector3d(0, 0, 1));
+}
+
+TEST(Mesh, DegenerateFaceHasZeroNormal) {
+  Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  mesh.faces = {{0, 1, 2}};
+  EXPECT_EQ(face_normal(mesh, 0), Eigen::Vector3d::Zero());
+  EXPECT_EQ(face_area(mesh, 0), 0.0);
+}
+
+TEST(Mesh, ConsistencyCheckNamesTheProblem) {
+  Mesh mesh = unit_right_triangle();
+  mesh.faces.push_back({0, 1, 7});
+  try {
+    check_consistent(mesh, "part.ply");
+    FAIL() << "an out-of-range face was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("part.ply: face 1 refers to vertex 7 of 3"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Mesh, CloudConversionKeepsPointsAndNormals) {
+  Mesh mesh = unit_right_triangle();
+  mesh.normals = vertex_normals_from_faces(mesh);
+  const Mesh back = to_mesh(to_cloud(mesh));
+  ASSERT_EQ(back.vertices.size(), 3u);
+  ASSERT_EQ(back.normals.size(), 3u);
+  EXPECT_TRUE(back.faces.empty());
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.vertices[i], mesh.vertices[i]);  // small integers are exact in float
+    EXPECT_EQ(back.normals[i], mesh.normals[i]);
+  }
+}
+
+TEST(Polyline, LengthCountsTheClosingSegment) {
+  Polyline square{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, false};
+  EXPECT_DOUBLE_EQ(length(square), 3.0);
+  square.closed = true;
+  EXPECT_DOUBLE_EQ(length(square), 4.0);
+}
+
+}  // namespace
+}  // namespace conform
