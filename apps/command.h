@@ -35,7 +35,8 @@ inline bool register_command(CommandEntry entry) {
 
 }  // namespace conform::app
 
-// CONFORM_COMMAND(InfoCommand, "info", "what a file holds") in the subcommand's .cpp file.
+// CONFORM_COMMAND(InfoCommand, "info", "what a file holds") in the subcommand's .cpp file, inside
+// namespace conform::app, after the command class.
 #define CONFORM_COMMAND(Type, path, summary)                                      \
   namespace {                                                                     \
   const bool registered_##Type = ::conform::app::register_command(               \

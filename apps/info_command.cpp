@@ -69,6 +69,7 @@ class InfoCommand : public Command {
 };
 
 }  // namespace
-}  // namespace conform::app
 
 CONFORM_COMMAND(InfoCommand, "info", "Show what a cloud or mesh file holds (points, faces, normals, box, NaNs)")
+
+}  // namespace conform::app

@@ -46,6 +46,11 @@ CLI::App* subcommand_for(CLI::App& root, const std::string& path, const std::str
     }
     parent = existing;
   }
+  // A group's one-line description lists what it holds, so new members need no edit here.
+  if (parent != &root) {
+    const std::string listed = parent->get_description();
+    parent->description(listed.empty() ? "Subcommands: " + rest : listed + ", " + rest);
+  }
   return parent->add_subcommand(rest, summary);
 }
 

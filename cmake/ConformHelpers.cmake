@@ -2,6 +2,9 @@
 add_library(conform_warnings INTERFACE)
 target_compile_options(conform_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
                                                   -Wconversion -Wno-sign-conversion)
+# Same input, same bytes out: no fused multiply-adds, which some targets (aarch64, -march with FMA) would
+# otherwise introduce and which change the last bits of generated data.
+target_compile_options(conform_warnings INTERFACE -ffp-contract=off)
 if(CONFORM_WERROR)
   target_compile_options(conform_warnings INTERFACE -Werror)
 endif()

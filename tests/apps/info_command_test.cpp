@@ -110,7 +110,7 @@ TEST(InfoCommand, MalformedFilesGiveExitCodeTwoAndAMessageNamingFileAndProblem) 
   const std::vector<BadFile> bad = {
       {"truncated.stl", binary_stl(10, 9) + std::string(30, '\0'), "truncated"},
       {"claims_more.stl", binary_stl(1000000, 2), "1000000"},
-      {"truncated.ply", binary_ply(5, 4) + std::string(6, '\0'), "vertex"},
+      {"truncated.ply", binary_ply(5, 4) + std::string(6, '\0'), "truncated"},
       {"claims_more.ply", binary_ply(2000000000, 3), "2000000000"},
       {"letters.xyz", "1 2 3\n4 five 6\n", "five"},
       {"letters.csv", "x,y,z\n1,2,3\n4,5,6\n7,8,z9\n", "z9"},

@@ -6,7 +6,8 @@
 //   .pcd  clouds (PCL's reader and writer), normals as normal_x/y/z
 //   .xyz .txt .asc .csv  point lists: whitespace- or comma-separated, optional header line naming x y z nx ny nz
 // Every reader checks counts against the file's size before allocating and reports errors as conform::Error
-// naming the file and the line or byte where the problem is.
+// naming the file and the line, element or byte where the problem is. Writers are byte-deterministic (the same
+// input gives the same bytes: no dates in headers) and atomic.
 
 #include <cstddef>
 #include <string>
@@ -37,8 +38,10 @@ struct ReadReport {
 enum class Encoding { kBinary, kAscii };
 
 struct WriteOptions {
-  Encoding encoding = Encoding::kBinary;  // for .ply and .stl; the other formats are what they are
-  bool double_precision = false;          // .ply vertices as double; ascii formats print 17 digits instead of 9
+  Encoding encoding = Encoding::kBinary;  // for .ply, .stl and .pcd; .obj and the point lists are text anyway
+  // .ply vertices and normals as double; text formats print each double's shortest round-trip text (up to 17 digits)
+  // instead of the float's (up to 9). .stl and .pcd are single precision whatever this says.
+  bool double_precision = false;
 };
 
 // Whatever the file holds: vertices, normals if present, faces if it has any (none for point formats).

@@ -1,14 +1,19 @@
 #pragma once
 // Nearest-neighbour search over a fixed set of 3D points: k nearest and all within a radius.
-// The tree keeps its own copy of the points (float, mm); queries are thread-safe.
+// The tree keeps its own copy of the points (float, mm); queries are thread-safe. A kd-tree (nanoflann; chosen over
+// PCL's KdTreeFLANN by bench/nearest_neighbors_bench.cpp). Results are exact and deterministic: squared distances are
+// computed in float as dx*dx + dy*dy + dz*dz, and neighbours are ordered by (squared distance, index), so ties go to
+// the lower index and the answer equals a brute-force sort.
+// Errors (conform::Error): a non-finite input point (callers clean clouds first), a non-finite query, k <= 0, a
+// negative or NaN radius. An empty tree is allowed: its queries find nothing.
 
 #include <cstddef>
 #include <memory>
 #include <vector>
 
-#include <Eigen/Core>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <Eigen/Core>
 
 namespace conform {
 
@@ -22,12 +27,14 @@ class KdTree {
 
   std::size_t size() const;
 
-  // The min(k, size()) nearest points, closest first; squared distances in mm^2.
+  // The min(k, size()) nearest points, closest first; squared distances in mm^2. The vectors are resized to fit
+  // (reusing them across queries avoids allocation).
   void knn(const Eigen::Vector3f& query, int k, std::vector<int>& indices, std::vector<float>& sq_distances) const;
-  // All points within `radius` mm (inclusive), closest first.
+  // All points within `radius` mm, inclusive (squared distance <= radius * radius, in float), closest first.
   void radius(const Eigen::Vector3f& query, float radius, std::vector<int>& indices,
               std::vector<float>& sq_distances) const;
-  // Index of the nearest point (-1 when the tree is empty); its squared distance in *sq_distance if given.
+  // Index of the nearest point (-1 when the tree is empty); its squared distance in *sq_distance if given
+  // (infinity when the tree is empty).
   int nearest(const Eigen::Vector3f& query, float* sq_distance = nullptr) const;
 
  private:

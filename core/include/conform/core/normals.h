@@ -1,8 +1,14 @@
 #pragma once
 // Surface normals by principal component analysis: the eigenvector of the smallest eigenvalue of the covariance of
-// each point's k nearest neighbours (accumulated in double, centred), oriented consistently.
+// each point's k nearest neighbours (the point itself included; accumulated in double, centred on the neighbourhood
+// mean), oriented consistently. Runs in parallel (OpenMP); the result does not depend on the number of threads.
+// Degenerate neighbourhoods get a defined, NaN-free normal with curvature 0: when all neighbours coincide, the unit
+// orientation reference direction (towards the viewpoint, away from / towards the axis, the vertex's face normal);
+// when they are collinear, the part of that direction perpendicular to the line. If that is zero too, the solver's
+// smallest eigenvector: a deterministic unit vector (perpendicular to the line, if there is one).
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -18,21 +24,23 @@ enum class NormalOrientation {
 };
 
 struct NormalOptions {
-  int k = 16;                                                   // neighbours per point, >= 3
+  int k = 16;  // neighbours per point, >= 3 (all points if fewer)
   NormalOrientation orientation = NormalOrientation::kTowardsViewpoint;
-  Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();         // mm
-  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();        // mm, for the axis orientations
-  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitZ();   // any length > 0
+  Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();        // mm
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();       // mm, for the axis orientations
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitZ();  // any length > 0
 
   bool IsValid(std::string* error) const;
 };
 
-// Unit normals of every point; curvature holds the surface variation l0 / (l0 + l1 + l2).
-// Throws conform::Error when options are invalid or the cloud has fewer than 3 points.
+// Unit normals of every point; curvature holds the surface variation l0 / (l0 + l1 + l2) (l0 the smallest eigenvalue).
+// Throws conform::Error when options are invalid, the cloud has fewer than 3 points or a non-finite point.
 pcl::PointCloud<pcl::Normal> estimate_normals(const Cloud& cloud, const NormalOptions& options);
 
 // PCA normals of a mesh's vertices over their k nearest vertices, each oriented to agree with the
-// area-weighted normal of the faces around that vertex.
+// area-weighted normal of the faces around that vertex (vertex_normals_from_faces); a vertex without faces uses the
+// sum of its neighbours' face normals, and keeps the PCA sign when that is zero too. Throws conform::Error when k < 3,
+// the mesh has fewer than 3 vertices, no faces, a bad face index or a non-finite vertex.
 std::vector<Eigen::Vector3d> estimate_normals(const Mesh& mesh, int k = 16);
 
 }  // namespace conform

@@ -1,0 +1,152 @@
+// `conform saddle`: the saddle-shaped weld path of a pipe on a cylinder, interpolated at equal angles or at constant
+// torch speed, with the torch pose angle (Xue et al. 2018, generalised to any pitch and offset).
+
+#include <cstdio>
+#include <string>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/saddle.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+// deg / 180 first, so that 90 deg is exactly pi / 2 (the paper's joint) and 45 deg exactly pi / 4.
+double radians(double deg) { return deg / 180.0 * kPi; }
+double degrees(double rad) { return rad / kPi * 180.0; }
+
+class SaddleCommand : public Command {
+ public:
+  void configure(CLI::App& command) override {
+    command.add_option("--R", leg_radius_mm_, "Cylinder (leg) radius R, mm; required")->required();
+    command.add_option("--r", pipe_radius_mm_, "Pipe radius r, mm, 0 < r < R; required")->required();
+    command.add_option("--pitch-deg", pitch_deg_,
+                       "Angle between the pipe axis and the cylinder axis, deg, in (0, 90]; default 90 (the paper's "
+                       "right-angle joint)");
+    command.add_option("--offset", offset_mm_,
+                       "Distance between the two axes, mm, |offset| + r < R; default 0 (the axes intersect)");
+    command
+        .add_option("--start-pose-deg", start_pose_deg_,
+                    "Torch pose angle at theta = 0 (the paper's phi0; Table 1 uses 45), deg; required")
+        ->required();
+    CLI::Option* step = command.add_option(
+        "--step-deg", step_deg_, "Equal-angle interpolation: rotation per step, deg, in (0, 360]; no default");
+    CLI::Option* speed = command.add_option(
+        "--speed", speed_mm_per_s_, "Constant-speed interpolation: torch speed along the seam, mm/s; no default");
+    CLI::Option* period = command.add_option(
+        "--period", period_s_, "Constant-speed interpolation: interpolation period, s (e.g. 0.004); no default");
+    step->excludes(speed)->excludes(period);
+    speed->needs(period);
+    period->needs(speed);
+    command.add_option("--out", out_path_, "CSV to write: i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm; default none");
+    command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+    step_ = step;
+    speed_ = speed;
+  }
+
+  int run() override {
+    SaddleJobOptions options;
+    SaddleGeometry& geometry = options.saddle.geometry;
+    geometry.leg_radius_mm = leg_radius_mm_;
+    geometry.pipe_radius_mm = pipe_radius_mm_;
+    geometry.pitch_rad = radians(pitch_deg_);
+    geometry.offset_mm = offset_mm_;
+    options.saddle.start_pose_rad = radians(start_pose_deg_);
+    if (step_->count() > 0) {
+      options.saddle.rule = SaddleStepRule::kEqualAngle;
+      options.saddle.step_rad = radians(step_deg_);
+    } else if (speed_->count() > 0) {
+      options.saddle.rule = constant_speed_rule(geometry);
+      options.saddle.speed_mm_per_s = speed_mm_per_s_;
+      options.saddle.period_s = period_s_;
+    } else {
+      throw Error("saddle: give --step-deg A (equal-angle steps) or --speed MM_PER_S with --period S (constant speed)");
+    }
+    options.out_path = out_path_;
+
+    const SaddleJobResult result = run_saddle(options);
+    if (json_) {
+      print_json(to_json(result));
+    } else {
+      print_text(result);
+    }
+    if (!result.saddle.converged) {
+      warn("saddle: " + result.saddle.termination + "; no file written");
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  nlohmann::json to_json(const SaddleJobResult& job) const {
+    const SaddleResult& s = job.saddle;
+    const bool equal_angle = s.rule == SaddleStepRule::kEqualAngle;
+    return {{"points", s.points.size()},
+            {"step_mm_min", s.step_mm_min},
+            {"step_mm_max", s.step_mm_max},
+            {"step_mm_mean", s.step_mm_mean},
+            {"speed_ripple_pct", s.speed_ripple_pct},
+            {"last_step_mm", s.last_step_mm},
+            {"last_step_partial", s.last_step_partial},
+            {"interpolation", to_string(s.rule)},
+            {"converged", s.converged},
+            {"curve_length_mm", s.curve_length_mm},
+            {"path_length_mm", s.path_length_mm},
+            {"pose_deg_min", degrees(s.pose_rad_min)},
+            {"pose_deg_max", degrees(s.pose_rad_max)},
+            {"max_pipe_residual_mm", s.max_pipe_residual_mm},
+            {"max_cylinder_residual_mm", s.max_leg_residual_mm},
+            {"R_mm", leg_radius_mm_},
+            {"r_mm", pipe_radius_mm_},
+            {"pitch_deg", pitch_deg_},
+            {"offset_mm", offset_mm_},
+            {"start_pose_deg", start_pose_deg_},
+            {"step_deg", equal_angle ? nlohmann::json(step_deg_) : nlohmann::json(nullptr)},
+            {"speed_mm_per_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(speed_mm_per_s_)},
+            {"period_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(period_s_)},
+            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
+  }
+
+  void print_text(const SaddleJobResult& job) const {
+    const SaddleResult& s = job.saddle;
+    std::printf("seam          R %g mm, r %g mm, pitch %g deg, offset %g mm\n", leg_radius_mm_, pipe_radius_mm_,
+                pitch_deg_, offset_mm_);
+    if (s.rule == SaddleStepRule::kEqualAngle) {
+      std::printf("interpolation %s, %g deg per step, start pose %g deg\n", to_string(s.rule), step_deg_,
+                  start_pose_deg_);
+    } else {
+      std::printf("interpolation %s, %g mm/s x %g s = %g mm per period, start pose %g deg\n", to_string(s.rule),
+                  speed_mm_per_s_, period_s_, speed_mm_per_s_ * period_s_, start_pose_deg_);
+    }
+    std::printf("points        %zu (%zu full steps, last step %.6f mm%s)\n", s.points.size(), s.full_steps,
+                s.last_step_mm, s.last_step_partial ? ", shortened to land on 360 deg" : "");
+    std::printf("step mm       min %.6f  mean %.6f  max %.6f\n", s.step_mm_min, s.step_mm_mean, s.step_mm_max);
+    std::printf("speed ripple  %.6f %%\n", s.speed_ripple_pct);
+    std::printf("length mm     path %.6f  seam %.6f\n", s.path_length_mm, s.curve_length_mm);
+    std::printf("pose deg      min %.4f  max %.4f\n", degrees(s.pose_rad_min), degrees(s.pose_rad_max));
+    std::printf("residual mm   pipe %.3g  cylinder %.3g\n", s.max_pipe_residual_mm, s.max_leg_residual_mm);
+    std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
+  }
+
+  double leg_radius_mm_ = 0.0;
+  double pipe_radius_mm_ = 0.0;
+  double pitch_deg_ = 90.0;
+  double offset_mm_ = 0.0;
+  double start_pose_deg_ = 0.0;
+  double step_deg_ = 0.0;
+  double speed_mm_per_s_ = 0.0;
+  double period_s_ = 0.0;
+  std::string out_path_;
+  bool json_ = false;
+  CLI::Option* step_ = nullptr;
+  CLI::Option* speed_ = nullptr;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(SaddleCommand, "saddle",
+                "Saddle weld path of a pipe on a cylinder with torch pose, equal-angle or constant speed (Xue 2018)")
+
+}  // namespace conform::app
