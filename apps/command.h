@@ -37,8 +37,8 @@ inline bool register_command(CommandEntry entry) {
 
 // CONFORM_COMMAND(InfoCommand, "info", "what a file holds") in the subcommand's .cpp file, inside
 // namespace conform::app, after the command class.
-#define CONFORM_COMMAND(Type, path, summary)                                      \
-  namespace {                                                                     \
-  const bool registered_##Type = ::conform::app::register_command(               \
+#define CONFORM_COMMAND(Type, path, summary)                                                 \
+  namespace {                                                                                \
+  const bool registered_##Type = ::conform::app::register_command(                           \
       {path, summary, [] { return std::unique_ptr<::conform::app::Command>(new Type()); }}); \
   }

@@ -8,8 +8,8 @@
 #include <map>
 #include <memory>
 
-#include <CLI/CLI.hpp>
 #include <pcl/console/print.h>
+#include <CLI/CLI.hpp>
 
 #include "command.h"
 #include "conform/core/error.h"

@@ -2,7 +2,10 @@
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # PCL's io component pulls VTK, whose config needs MPI's C component found first.
 find_package(MPI COMPONENTS C QUIET)
-find_package(PCL 1.12 REQUIRED COMPONENTS common io kdtree search)
+find_package(PCL 1.12 REQUIRED COMPONENTS common io kdtree search features filters registration sample_consensus
+                                          segmentation)
+find_package(Ceres 2.0 REQUIRED)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.9 REQUIRED)
 find_package(OpenMP REQUIRED COMPONENTS CXX)

@@ -14,9 +14,10 @@
 #include "conform/core/error.h"
 
 // nanoflann rather than PCL's KdTreeFLANN, by bench/nearest_neighbors_bench.cpp (uniform and scanner-like tube
-// clouds of 100k and 1M points, 100k queries, thread CPU time): this tree builds 1.3-1.6x faster than KdTreeFLANN; at
-// 100k points it answers k = 1 2.5-3.4x, k = 10 1.4-1.7x and ~20-neighbour radius queries 1.5-1.7x faster; at 1M
-// points, where cache misses dominate, 1.2-2x faster thanks to store_in_leaf_order() (plain nanoflann is 0.9-1.4x).
+// clouds of 100k and 1M points, 100k queries, thread CPU time, two runs): this tree builds 1.3-1.8x faster than
+// KdTreeFLANN; at 100k points it answers k = 1 2.8-3.3x, k = 10 1.7-1.8x and ~20-neighbour radius queries 1.7x
+// faster; at 1M points, where cache misses dominate, k = 1 1.8-2.3x, k = 10 1.4-2.0x and radius 1.2-1.7x faster
+// thanks to store_in_leaf_order() (plain nanoflann is 0.9-1.6x there).
 
 namespace conform {
 

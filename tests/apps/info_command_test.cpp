@@ -114,8 +114,10 @@ TEST(InfoCommand, MalformedFilesGiveExitCodeTwoAndAMessageNamingFileAndProblem) 
       {"claims_more.ply", binary_ply(2000000000, 3), "2000000000"},
       {"letters.xyz", "1 2 3\n4 five 6\n", "five"},
       {"letters.csv", "x,y,z\n1,2,3\n4,5,6\n7,8,z9\n", "z9"},
-      {"nan.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-                  "end_header\n0 0 0\nnan 1 1\n", "nan"},
+      {"nan.ply",
+       "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+       "end_header\n0 0 0\nnan 1 1\n",
+       "nan"},
       {"inf.xyz", "1 2 3\ninf 0 0\n", "inf"},
       {"empty.ply", "", "empty"},
       {"empty.stl", "", "empty"},

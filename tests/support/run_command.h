@@ -7,10 +7,10 @@
 namespace conform::test {
 
 struct RunResult {
-  int exit_code = -1;     // the program's exit code; -1 when it did not exit normally
-  int signal = 0;         // the signal that ended it (a crash), 0 if none
-  std::string out;        // stdout
-  std::string err;        // stderr
+  int exit_code = -1;  // the program's exit code; -1 when it did not exit normally
+  int signal = 0;      // the signal that ended it (a crash), 0 if none
+  std::string out;     // stdout
+  std::string err;     // stderr
 };
 
 RunResult run(const std::string& program, const std::vector<std::string>& args);

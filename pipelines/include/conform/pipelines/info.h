@@ -15,9 +15,9 @@ struct InfoOptions {
 
 struct InfoResult {
   std::string path;
-  std::string format;          // the extension it was read as, e.g. ".ply"
-  std::size_t points = 0;      // vertices of a mesh, points of a cloud
-  std::size_t faces = 0;       // triangles (polygons counted after fan triangulation)
+  std::string format;      // the extension it was read as, e.g. ".ply"
+  std::size_t points = 0;  // vertices of a mesh, points of a cloud
+  std::size_t faces = 0;   // triangles (polygons counted after fan triangulation)
   bool has_normals = false;
   std::size_t non_finite = 0;  // points with a NaN or infinite coordinate
   BoundingBox box;             // over the finite points, mm
