@@ -9,8 +9,11 @@
 // naming the file and the line, element or byte where the problem is. Writers are byte-deterministic (the same
 // input gives the same bytes: no dates in headers) and atomic.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conform/core/cloud.h"
@@ -56,6 +59,21 @@ Cloud read_cloud(const std::string& path, const ReadOptions& options = {}, ReadR
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
 // Points to any format but .stl (which holds only triangles).
 void write_cloud(const std::string& path, const Cloud& cloud, const WriteOptions& options = {});
+
+// Per-vertex values written beside the geometry, e.g. a deviation map: viewers (CloudCompare, MeshLab) show the
+// scalars as scalar fields and the colours as vertex colours; conform's own reader ignores them with a warning.
+struct VertexAttributes {
+  // name -> one value per vertex, written as `property float <name>` after x y z (nx ny nz). Names are PLY words
+  // (letters, digits, '_'), not one of x y z nx ny nz red green blue.
+  std::vector<std::pair<std::string, std::vector<float>>> scalars;
+  std::vector<std::array<std::uint8_t, 3>> colors;  // empty, or one RGB per vertex (`property uchar red` ...)
+};
+
+// A .ply of the mesh (or of its vertices, when it has no faces) with the attributes, atomic and byte-deterministic
+// like write_mesh. Throws conform::Error naming the path when it is not .ply, an attribute does not have one value
+// per vertex, or a name is not allowed.
+void write_ply_with_attributes(const std::string& path, const Mesh& mesh, const VertexAttributes& attributes,
+                               const WriteOptions& options = {});
 
 // Lower-case extension including the dot (".ply"), "" when there is none.
 std::string file_extension(const std::string& path);

@@ -1,0 +1,232 @@
+// `conform align`: registers a scan to its reference (pipelines/align.h) and reports T_ref_scan, convergence, the fit
+// figures and what the scan does not constrain. Exit code 1 when ICP did not converge.
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/core/units.h"
+#include "conform/pipelines/align.h"
+#include "json_values.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+std::string vector_text(const Eigen::Vector3d& v, int decimals) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "(%.*f, %.*f, %.*f)", decimals, v.x(), decimals, v.y(), decimals, v.z());
+  return buffer;
+}
+
+// "translation along (0, 0, 1)", "rotation about (0, 0, 1) through (0, 0, 0) mm".
+std::string describe(const DegenerateDirection& d) {
+  if (d.kind == MotionKind::kTranslation) return "translation along " + vector_text(d.direction, 4);
+  return "rotation about " + vector_text(d.direction, 4) + " through " + vector_text(d.point, 3) + " mm";
+}
+
+nlohmann::json degenerate_json(const DegeneracyReport& report) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const DegenerateDirection& d : report.directions) {
+    nlohmann::json entry = {{"kind", d.kind == MotionKind::kTranslation ? "translation" : "rotation"},
+                            {"direction", to_json(d.direction)},
+                            {"relative_eigenvalue", d.relative_eigenvalue}};
+    if (d.kind == MotionKind::kRotation) {
+      entry["point_mm"] = to_json(d.point);
+      entry["pitch_mm_per_rad"] = d.pitch_mm_per_rad;
+    }
+    list.push_back(entry);
+  }
+  return list;
+}
+
+// Why ICP stopped, in words a user can act on.
+std::string failure_message(const AlignResult& r) {
+  const IcpResult& icp = r.icp;
+  char distance[64];
+  std::snprintf(distance, sizeof distance, "%g mm", r.max_distance_mm);
+  switch (icp.termination) {
+    case IcpTermination::kTooFewCorrespondences:
+      return "registration did not converge: too few scan points (" + std::to_string(icp.inliers) + " of " +
+             std::to_string(r.scan_points_used) + ") lie within " + distance +
+             " of the reference. Do scan and reference overlap? Place the scan coarsely (--init pca, --init fpfh, "
+             "--init pairs:FILE) or raise --max-distance";
+    case IcpTermination::kInsufficientOverlap: {
+      char share[32];
+      std::snprintf(share, sizeof share, "%.1f%%", 100.0 * icp.inlier_fraction);
+      return std::string("registration did not converge: it settled on ") + share +
+             " of the scan only, too little to trust. Do scan and reference overlap? Try --init pca or fpfh";
+    }
+    case IcpTermination::kMaxIterations:
+      return "registration did not converge within " + std::to_string(icp.iterations) + " iterations (last step " +
+             std::to_string(icp.last_rotation_rad * kDeg) + " deg, " + std::to_string(icp.last_translation_mm) +
+             " mm). Raise --max-iterations, or start closer (--init)";
+    default:
+      return std::string("registration did not converge: ") + to_string(icp.termination);
+  }
+}
+
+class AlignCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.description("Register a scan to its reference: rigid T_ref_scan (ICP after an optional coarse placement)");
+    c.add_option("--scan", options_.scan_path, "Scan, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv)")
+        ->required();
+    c.add_option("--reference", options_.reference_path, "Reference: CAD mesh or cloud, same formats")->required();
+    c.add_option("--method", method_,
+                 "point-to-point, point-to-plane or point-to-surface (closest point on the reference's triangles); "
+                 "default point-to-surface for a mesh reference, point-to-plane for a cloud")
+        ->check(CLI::IsMember({"point-to-point", "point-to-plane", "point-to-surface"}));
+    c.add_option("--init", init_,
+                 "Coarse placement: none (the scan is roughly in place), pca (principal axes, all sign choices "
+                 "tried), fpfh (FPFH features + RANSAC; partial overlap) or pairs:FILE (>= 3 point pairs, one per "
+                 "line: scan x y z reference x y z); default none");
+    c.add_option("--max-distance", options_.max_distance_mm,
+                 "Pairs farther apart are ignored, mm; default 10% of the reference's bounding-box diagonal");
+    c.add_option("--overlap", options_.overlap,
+                 "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed; default 1");
+    c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most; default 50");
+    c.add_option("--units", units_,
+                 "Units of both input files and the pairs file (mm, cm, m, in); outputs are in "
+                 "mm; default mm");
+    c.add_option("--out-transform", options_.out_transform_path,
+                 "Write T_ref_scan (4x4 row-major text, mm) when converged");
+    c.add_option("--out-aligned", options_.out_aligned_path,
+                 "Write the scan moved into the reference frame (mm), mesh or cloud as read, when converged");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  int run() override {
+    options_.mm_per_unit = millimetres_per_unit(units_);
+    if (!method_.empty()) {
+      options_.method = method_ == "point-to-point"   ? IcpMethod::kPointToPoint
+                        : method_ == "point-to-plane" ? IcpMethod::kPointToPlane
+                                                      : IcpMethod::kPointToSurface;
+    }
+    parse_init();
+    options_.progress = stderr_progress(false);
+    const AlignResult result = run_align(options_);
+    warn_all(result.warnings);
+    if (json_) {
+      print_json(summary(result));
+    } else {
+      print_text(result);
+    }
+    if (result.icp.degeneracy.degenerate()) {
+      warn("the scan does not constrain every degree of freedom; these motions were held at the start pose: " +
+           degenerate_list(result.icp.degeneracy));
+    }
+    if (!result.icp.converged) {
+      std::fprintf(stderr, "conform: %s\n", failure_message(result).c_str());
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  void parse_init() {
+    if (init_ == "none") {
+      options_.init = AlignInit::kNone;
+    } else if (init_ == "pca") {
+      options_.init = AlignInit::kPca;
+    } else if (init_ == "fpfh") {
+      options_.init = AlignInit::kFpfh;
+    } else if (init_.rfind("pairs:", 0) == 0 && init_.size() > 6) {
+      options_.init = AlignInit::kPairs;
+      options_.pairs_path = init_.substr(6);
+    } else {
+      throw Error("--init " + init_ + ": use none, pca, fpfh or pairs:FILE");
+    }
+  }
+
+  static std::string degenerate_list(const DegeneracyReport& report) {
+    std::string out;
+    for (const DegenerateDirection& d : report.directions) out += (out.empty() ? "" : "; ") + describe(d);
+    return out;
+  }
+
+  static nlohmann::json summary(const AlignResult& r) {
+    const IcpResult& icp = r.icp;
+    nlohmann::json starts = nlohmann::json::array();
+    for (const StartReport& s : r.coarse.ranking.starts) {
+      starts.push_back({{"label", s.label}, {"score_mm", s.score_mm}, {"inlier_fraction", s.inlier_fraction}});
+    }
+    nlohmann::json j = {{"T_ref_scan", to_json(icp.T_ref_scan)},
+                        {"converged", icp.converged},
+                        {"iterations", icp.iterations},
+                        {"termination", to_string(icp.termination)},
+                        {"rms_mm", icp.rms_mm},
+                        {"inlier_fraction", icp.inlier_fraction},
+                        {"degenerate_directions", degenerate_json(icp.degeneracy)},
+                        {"degeneracy_eigenvalues",
+                         std::vector<double>(icp.degeneracy.eigenvalues.data(),
+                                             icp.degeneracy.eigenvalues.data() + icp.degeneracy.eigenvalues.size())},
+                        {"method", to_string(r.method)},
+                        {"init", to_string(r.init)},
+                        {"start", r.start},
+                        {"starts", starts},
+                        {"ambiguous", r.coarse.ranking.ambiguous},
+                        {"max_distance_mm", r.max_distance_mm},
+                        {"scan_points", r.scan_points},
+                        {"scan_points_used", r.scan_points_used},
+                        {"reference_points", r.reference_points},
+                        {"reference_faces", r.reference_faces},
+                        {"transform_file", r.transform_path},
+                        {"aligned_file", r.aligned_path}};
+    if (r.init == AlignInit::kPairs) {
+      j["pair_residuals_mm"] = r.pairs.residuals_mm;
+      j["pair_rms_mm"] = r.pairs.rms_mm;
+    }
+    return j;
+  }
+
+  static void print_text(const AlignResult& r) {
+    const IcpResult& icp = r.icp;
+    std::printf("scan          %zu points, %zu used\n", r.scan_points, r.scan_points_used);
+    std::printf("reference     %zu points, %zu faces\n", r.reference_points, r.reference_faces);
+    std::printf("method        %s, max distance %.4g mm, start %s (init %s", to_string(r.method), r.max_distance_mm,
+                r.start.c_str(), to_string(r.init));
+    if (!r.coarse.ranking.starts.empty()) {
+      std::printf(", best of %zu starts%s", r.coarse.ranking.starts.size(),
+                  r.coarse.ranking.ambiguous ? ", ambiguous" : "");
+    }
+    std::printf(")\n");
+    for (std::size_t i = 0; i < r.pairs.residuals_mm.size(); ++i) {
+      std::printf("pair %-8zu residual %.4f mm\n", i + 1, r.pairs.residuals_mm[i]);
+    }
+    std::printf("converged     %s (%s after %d iterations)\n", icp.converged ? "yes" : "no", to_string(icp.termination),
+                icp.iterations);
+    std::printf("rms mm        %.6f\n", icp.rms_mm);
+    std::printf("inliers       %.2f %%\n", 100.0 * icp.inlier_fraction);
+    for (int row = 0; row < 4; ++row) {
+      std::printf("%s %14.9f %14.9f %14.9f %16.9f\n", row == 0 ? "T_ref_scan   " : "             ",
+                  icp.T_ref_scan(row, 0), icp.T_ref_scan(row, 1), icp.T_ref_scan(row, 2), icp.T_ref_scan(row, 3));
+    }
+    const Eigen::VectorXd& e = icp.degeneracy.eigenvalues;
+    std::printf("eigenvalues  ");
+    for (Eigen::Index i = 0; i < e.size(); ++i) std::printf(" %.3g", e(i));
+    std::printf("  (smallest/largest %.3g)\n", icp.degeneracy.relative_smallest());
+    if (icp.degeneracy.directions.empty()) std::printf("degenerate    none: all degrees of freedom constrained\n");
+    for (const DegenerateDirection& d : icp.degeneracy.directions) {
+      std::printf("degenerate    %s (relative eigenvalue %.2g)\n", describe(d).c_str(), d.relative_eigenvalue);
+    }
+    if (!r.transform_path.empty()) std::printf("transform     %s\n", r.transform_path.c_str());
+    if (!r.aligned_path.empty()) std::printf("aligned       %s\n", r.aligned_path.c_str());
+  }
+
+  AlignOptions options_;
+  std::string method_;
+  std::string init_ = "none";
+  std::string units_ = "mm";
+  bool json_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(AlignCommand, "align", "Register a scan to its reference (ICP, coarse placement, degeneracy report)")
+
+}  // namespace conform::app

@@ -1,0 +1,151 @@
+// `conform compare`: the deviation of a scan from its reference (pipelines/compare.h): statistics as text or JSON,
+// optionally the deviation map (.ply) and the histogram (.png).
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "command.h"
+#include "conform/core/units.h"
+#include "conform/pipelines/compare.h"
+#include "deviation_colours.h"
+#include "deviation_histogram.h"
+#include "json_values.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+nlohmann::json path_or_null(const std::string& path) {
+  return path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
+}
+
+class CompareCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.description(
+        "Deviation of a scan from its reference: signed distance to the reference surface (+ outside), statistics, "
+        "tolerance shares, colour map, histogram");
+    c.add_option("--scan", options_.scan_path, "Scan, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv)")
+        ->required();
+    c.add_option("--reference", options_.reference_path,
+                 "Reference: a mesh (CAD as .stl/.ply/.obj: signed deviations) or a cloud (unsigned)")
+        ->required();
+    c.add_option("--transform", options_.transform_path,
+                 "T_ref_scan, 4x4 row-major text (e.g. from `conform align --out-transform`), applied to the scan; "
+                 "default: the scan is already in the reference frame");
+    tolerance_ = c.add_option("--tolerance", tolerance_mm_,
+                              "Tolerance band +-t, mm (> 0): in/above/below shares and the map's green band; "
+                              "default none");
+    c.add_option("--out-deviation", options_.out_deviation_path,
+                 "Write the scan in the reference frame as .ply with per-vertex deviation_mm and colours "
+                 "(blue below, green within tolerance, red above)");
+    c.add_option("--out-histogram", options_.out_histogram_path,
+                 "Write a histogram of the deviations as .png, the tolerance band marked");
+    c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm; default mm");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  int run() override {
+    options_.mm_per_unit = millimetres_per_unit(units_);
+    if (*tolerance_) options_.tolerance_mm = tolerance_mm_;
+    options_.colour = deviation_colour;
+    const std::string title =
+        "Deviation of " + file_name(options_.scan_path) + " from " + file_name(options_.reference_path);
+    options_.histogram = [title](const std::vector<double>& d, const DeviationStatistics& s) {
+      return deviation_histogram_png(d, s, title);
+    };
+    options_.progress = stderr_progress(false);
+    const CompareResult result = run_compare(options_);
+    warn_all(result.warnings);
+    if (!result.deviation.note.empty()) warn(result.deviation.note);
+    if (json_) {
+      print_json(to_json(result));
+    } else {
+      print_text(result);
+    }
+    if (result.statistics.count == 0) {
+      warn("no scan point was matched to the reference");
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  nlohmann::json to_json(const CompareResult& r) const {
+    const DeviationStatistics& s = r.statistics;
+    nlohmann::json j = {{"scan", options_.scan_path},
+                        {"reference", options_.reference_path},
+                        {"transform", path_or_null(options_.transform_path)},
+                        {"T_ref_scan", app::to_json(r.T_ref_scan)},
+                        {"units", units_},
+                        {"signed", r.deviation.is_signed()},
+                        {"note", path_or_null(r.deviation.note)},
+                        {"points", r.scan_points},
+                        {"matched", r.deviation.matched},
+                        {"reference_points", r.reference_points},
+                        {"reference_faces", r.reference_faces},
+                        {"mean_mm", s.mean_mm},
+                        {"std_mm", s.std_mm},
+                        {"rms_mm", s.rms_mm},
+                        {"min_mm", s.min_mm},
+                        {"max_mm", s.max_mm},
+                        {"mean_abs_mm", s.mean_abs_mm},
+                        {"p5_mm", s.p5_mm},
+                        {"p50_mm", s.p50_mm},
+                        {"p95_mm", s.p95_mm},
+                        {"p99_mm", s.p99_mm},
+                        {"p95_abs_mm", s.p95_abs_mm},
+                        {"percentiles", "linear between closest ranks (Hyndman & Fan 7, NumPy's default)"},
+                        {"out_deviation", path_or_null(r.out_deviation_path)},
+                        {"out_histogram", path_or_null(r.out_histogram_path)}};
+    if (s.tolerance_mm) {
+      j["tolerance_mm"] = *s.tolerance_mm;
+      j["in_tolerance_pct"] = s.in_tolerance_pct;
+      j["above_tolerance_pct"] = s.above_pct;
+      j["below_tolerance_pct"] = s.below_pct;
+      j["within_tolerance"] = s.within_tolerance();
+    }
+    return j;
+  }
+
+  void print_text(const CompareResult& r) const {
+    const DeviationStatistics& s = r.statistics;
+    std::printf("scan         %s (%zu points)\n", options_.scan_path.c_str(), r.scan_points);
+    if (r.reference_faces > 0) {
+      std::printf("reference    %s (%zu faces): signed distance to its surface, + outside\n",
+                  options_.reference_path.c_str(), r.reference_faces);
+    } else {
+      std::printf("reference    %s (%zu points, no faces): unsigned distance to the nearest point\n",
+                  options_.reference_path.c_str(), r.reference_points);
+    }
+    std::printf("transform    %s\n", options_.transform_path.empty() ? "none" : options_.transform_path.c_str());
+    std::printf("matched      %zu of %zu points\n", r.deviation.matched, r.scan_points);
+    std::printf("deviation mm mean %.4f  std %.4f  RMS %.4f  min %.4f  max %.4f\n", s.mean_mm, s.std_mm, s.rms_mm,
+                s.min_mm, s.max_mm);
+    std::printf("percentiles  p5 %.4f  p50 %.4f  p95 %.4f  p99 %.4f  p95 of |d| %.4f mm\n", s.p5_mm, s.p50_mm, s.p95_mm,
+                s.p99_mm, s.p95_abs_mm);
+    if (s.tolerance_mm) {
+      std::printf("tolerance    +-%g mm: %.2f %% inside, %.2f %% above, %.2f %% below: %s\n", *s.tolerance_mm,
+                  s.in_tolerance_pct, s.above_pct, s.below_pct,
+                  s.within_tolerance() ? "within tolerance" : "OUT OF TOLERANCE");
+    }
+    if (!r.out_deviation_path.empty()) std::printf("wrote        %s\n", r.out_deviation_path.c_str());
+    if (!r.out_histogram_path.empty()) std::printf("wrote        %s\n", r.out_histogram_path.c_str());
+  }
+
+  CompareOptions options_;
+  CLI::Option* tolerance_ = nullptr;
+  double tolerance_mm_ = 0.0;
+  std::string units_ = "mm";
+  bool json_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(CompareCommand, "compare",
+                "Deviation of a scan from its reference: statistics, tolerance shares, colour map, histogram")
+
+}  // namespace conform::app

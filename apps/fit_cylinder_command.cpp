@@ -1,0 +1,126 @@
+// `conform fit-cylinder --input FILE`: the axis, radius, inliers and residual figures of a scanned tube
+// (pipelines/fit_cylinder.h). Exit 1 when the data do not define a cylinder (a plane, a sphere, too few inliers).
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/fit_cylinder.h"
+#include "json_values.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+double radians(double deg) { return deg / 180.0 * kPi; }
+double degrees(double rad) { return rad / kPi * 180.0; }
+
+class FitCylinderCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.description("Fit a cylinder to a tube scan: RANSAC on points and normals, then geometric least squares");
+    c.add_option("--input", options_.input_path,
+                 "Scan to fit, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv); required")
+        ->required();
+    c.add_option("--threshold", options_.fit.threshold_mm,
+                 "Inlier distance to the surface, mm; default 0 = automatic (3 noise sigmas, estimated)");
+    c.add_option("--min-radius", options_.fit.min_radius_mm, "Smallest radius accepted, mm; default 0");
+    max_radius_ = c.add_option("--max-radius", max_radius_mm_, "Largest radius accepted, mm; default none");
+    c.add_option("--axis", axis_, "Expected axis direction x y z (any length, either sign); default none")->expected(3);
+    c.add_option("--axis-tolerance-deg", axis_tolerance_deg_, "Largest angle of the axis from --axis, deg; default 10");
+    c.add_option("--normals-k", options_.fit.normal_neighbors,
+                 "Neighbours of the PCA normals when the file has none; default 16");
+    c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws; default 1");
+    c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier; default none");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+    c.add_flag("--quiet", quiet_, "No progress on stderr");
+  }
+
+  int run() override {
+    if (max_radius_->count() > 0) options_.fit.max_radius_mm = max_radius_mm_;
+    if (!axis_.empty()) options_.fit.axis_prior = Eigen::Vector3d(axis_[0], axis_[1], axis_[2]);
+    options_.fit.axis_prior_tolerance_rad = radians(axis_tolerance_deg_);
+    if (!axis_.empty() && !(options_.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
+    options_.fit.progress = stderr_progress(quiet_ || json_);
+    const FitCylinderJobResult result = run_fit_cylinder(options_);
+    warn_all(result.warnings);
+    if (json_) {
+      print_json(to_json(result));
+    } else {
+      print_text(result);
+    }
+    if (!result.fit.ok) {
+      warn("fit-cylinder: " + result.input_path + ": " + result.fit.termination);
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  static nlohmann::json to_json(const FitCylinderJobResult& job) {
+    const CylinderFitResult& f = job.fit;
+    return {{"input", job.input_path},
+            {"points", job.points},
+            {"normals", to_string(job.normals)},
+            {"ok", f.ok},
+            {"converged", f.converged},
+            {"failure", to_string(f.failure)},
+            {"termination", f.termination},
+            {"axis_point_mm", app::to_json(f.cylinder.axis_point)},
+            {"axis_direction", app::to_json(f.cylinder.axis_direction)},
+            {"radius_mm", f.cylinder.radius_mm},
+            {"rms_mm", f.rms_mm},
+            {"inliers", f.inliers.size()},
+            {"inlier_fraction", f.inlier_fraction},
+            {"radius_std_mm", f.radius_std_mm},
+            {"axis_angle_std_deg", degrees(f.axis_angle_std_rad)},
+            {"axis_point_std_mm", f.axis_point_std_mm},
+            {"noise_sigma_mm", f.noise_sigma_mm},
+            {"threshold_mm", f.threshold_mm},
+            {"arc_deg", degrees(f.arc_rad)},
+            {"side", to_string(f.side)},
+            {"ransac_iterations", f.ransac_iterations},
+            {"refine_rounds", f.refine_rounds},
+            {"solver_iterations", f.solver_iterations},
+            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
+  }
+
+  static void print_text(const FitCylinderJobResult& job) {
+    const CylinderFitResult& f = job.fit;
+    const Eigen::Vector3d& c = f.cylinder.axis_point;
+    const Eigen::Vector3d& a = f.cylinder.axis_direction;
+    std::printf("input         %s (%zu points, normals: %s)\n", job.input_path.c_str(), job.points,
+                to_string(job.normals));
+    std::printf("result        %s\n", f.ok ? "cylinder" : f.termination.c_str());
+    if (f.refine_rounds == 0) return;  // no model to describe: RANSAC found none
+    std::printf("radius mm     %.4f  (std %.4f)\n", f.cylinder.radius_mm, f.radius_std_mm);
+    std::printf("axis point mm %.4f %.4f %.4f  (std %.4f)\n", c.x(), c.y(), c.z(), f.axis_point_std_mm);
+    std::printf("axis dir      %.8f %.8f %.8f  (std %.5f deg)\n", a.x(), a.y(), a.z(), degrees(f.axis_angle_std_rad));
+    std::printf("inliers       %zu (%.2f %%) within %.4f mm; rms %.4f mm, noise sigma %.4f mm\n", f.inliers.size(),
+                100.0 * f.inlier_fraction, f.threshold_mm, f.rms_mm, f.noise_sigma_mm);
+    std::printf("arc deg       %.2f  (%s surface)\n", degrees(f.arc_rad), to_string(f.side));
+    std::printf("solver        %d RANSAC draws, %d rounds, %d LM iterations, %s\n", f.ransac_iterations,
+                f.refine_rounds, f.solver_iterations, f.converged ? "converged" : "not converged");
+    std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
+  }
+
+  FitCylinderJobOptions options_;
+  double max_radius_mm_ = 0.0;
+  CLI::Option* max_radius_ = nullptr;
+  std::vector<double> axis_;
+  double axis_tolerance_deg_ = 10.0;
+  bool json_ = false;
+  bool quiet_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(FitCylinderCommand, "fit-cylinder",
+                "Fit a cylinder (axis, radius, inliers, covariance) to a tube scan: RANSAC + Ceres least squares")
+
+}  // namespace conform::app

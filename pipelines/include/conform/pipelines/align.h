@@ -1,0 +1,87 @@
+#pragma once
+// `conform align`: where is the scan? Reads the scan and the reference, cleans them (points with NaN or infinite
+// coordinates dropped with a warning, duplicate scan points merged), thins the scan, estimates reference normals,
+// places the scan coarsely (none, principal axes, FPFH + RANSAC, or user point pairs; several starts ranked when the
+// method leaves a choice), refines with ICP (registration/icp.h) and reports the fit: T_ref_scan, convergence, RMS,
+// inlier fraction and the directions the scan does not constrain. Writes the transform and the aligned scan when
+// asked, only when ICP converged, whole or not at all.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "conform/core/progress.h"
+#include "conform/registration/coarse.h"
+#include "conform/registration/icp.h"
+#include "conform/registration/point_pairs.h"
+
+namespace conform {
+
+enum class AlignInit {
+  kNone,   // the scan is roughly in place already
+  kPca,    // principal axes, all sign combinations tried (scan and reference cover the same surface)
+  kFpfh,   // FPFH features + RANSAC (partial overlap), with the principal-axes starts when its answer is weak
+  kPairs,  // point pairs from pairs_path (Horn's method)
+};
+
+const char* to_string(AlignInit init);
+
+struct AlignOptions {
+  std::string scan_path;       // cloud or mesh, any format read_geometry reads
+  std::string reference_path;  // mesh (point-to-surface possible) or cloud
+  double mm_per_unit = 1.0;    // millimetres per unit of both files and of the pairs file (1000 for metres)
+
+  // Empty: point-to-surface against a mesh, point-to-plane against a cloud.
+  std::optional<IcpMethod> method;
+  AlignInit init = AlignInit::kNone;
+  // kPairs: one pair per line, `scan_x scan_y scan_z reference_x reference_y reference_z` (file units; spaces or
+  // commas; '#' starts a comment), at least 3 pairs not on one line.
+  std::string pairs_path;
+
+  double max_distance_mm = 0.0;  // ICP's maximum pair distance; 0: automatic, 10% of the reference's box diagonal
+  double overlap = 1.0;          // trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]
+  int max_iterations = 50;
+  RobustKernel kernel = RobustKernel::kHuber;
+  double scan_voxel_mm = 0.0;            // > 0: the scan thinned to one point per voxel before ICP
+  std::size_t max_scan_points = 200000;  // more scan points than this are thinned by an even stride
+  // The scan's bounding-box diagonal more than this many times larger or smaller than the reference's is taken for a
+  // unit mix-up (an error suggesting --units); 0: no check.
+  double max_size_ratio = 20.0;
+  std::uint64_t seed = 1;  // FPFH's RANSAC
+
+  std::string out_transform_path;  // T_ref_scan, 4x4 text (mm); empty: not written
+  std::string out_aligned_path;    // the scan in the reference frame (mm), mesh or cloud as read; empty: not written
+
+  ProgressFn progress;  // stages "read scan", "read reference", "normals", "coarse: ...", "icp", "write"
+
+  bool IsValid(std::string* error) const;
+};
+
+struct AlignResult {
+  IcpResult icp;                                // the fine fit; icp.converged says whether it succeeded
+  IcpMethod method = IcpMethod::kPointToPlane;  // as used
+  AlignInit init = AlignInit::kNone;
+  std::string start;       // the start that won: "identity", "pairs", "fpfh", "pca +x+y", ...
+  CoarseResult coarse;     // kPca, kFpfh: every start and its score
+  PointPairsResult pairs;  // kPairs: the transform and each pair's residual
+  Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();  // where fine ICP started
+  double max_distance_mm = 0.0;                               // as used
+  std::size_t scan_points = 0;                                // read (finite)
+  std::size_t scan_points_used = 0;                           // after merging duplicates and thinning
+  std::size_t reference_points = 0;
+  std::size_t reference_faces = 0;
+  std::vector<std::string> warnings;  // dropped points, merged duplicates, ambiguous starts
+  std::string transform_path;         // written; empty when not
+  std::string aligned_path;
+};
+
+// Throws conform::Error for bad input: invalid options, unreadable or empty files, a pairs file that is not 3+
+// valid pairs, scan and reference of wildly different sizes (units), point-to-surface against a cloud, an output
+// that cannot be written. Not converging is not an error: see result.icp.converged and termination.
+AlignResult run_align(const AlignOptions& options);
+
+}  // namespace conform

@@ -1,0 +1,71 @@
+#pragma once
+// `conform compare`: how far a scan deviates from its reference, point by point and in summary. Reads the scan and
+// the reference (a mesh: signed distances to its surface; a cloud: unsigned distances to its points), moves the scan
+// into the reference frame by T_ref_scan when given, measures every scan point (evaluation/deviation.h) and
+// summarises (evaluation/statistics.h), then writes the optional outputs: the deviation map (the scan in the
+// reference frame with a per-vertex `deviation_mm` and colours, .ply) and the histogram (.png). The colour scale and
+// the histogram picture are presentation: the caller (apps/) supplies them as functions. Outputs appear whole or
+// not at all, all of them or none.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "conform/core/mesh.h"
+#include "conform/core/progress.h"
+#include "conform/evaluation/deviation.h"
+#include "conform/evaluation/statistics.h"
+
+namespace conform {
+
+// RGB of one deviation (mm; NaN for an unmatched point), knowing the statistics of all (e.g. to scale the colours).
+using DeviationColourFn = std::function<std::array<std::uint8_t, 3>(double deviation_mm, const DeviationStatistics&)>;
+// A PNG file's bytes picturing all deviations.
+using DeviationHistogramFn =
+    std::function<std::string(const std::vector<double>& deviation_mm, const DeviationStatistics&)>;
+
+struct CompareOptions {
+  std::string scan_path;       // cloud or mesh, any format read_geometry reads
+  std::string reference_path;  // mesh (signed deviation) or cloud (unsigned)
+  std::string transform_path;  // T_ref_scan (4x4 text) applied to the scan; empty: the scan is in the reference frame
+  double mm_per_unit = 1.0;    // millimetres per unit of every input (coordinates and the transform's translation)
+  std::optional<double> tolerance_mm;  // the band +-t for the in/above/below shares; none by default
+  double max_distance_mm = std::numeric_limits<double>::infinity();  // farther scan points are unmatched (NaN)
+
+  std::string out_deviation_path;  // .ply; empty: not written
+  DeviationColourFn colour;        // the map's vertex colours; empty: the map has only `deviation_mm`
+  std::string out_histogram_path;  // .png; empty: not written
+  DeviationHistogramFn histogram;  // required with out_histogram_path
+
+  ProgressFn progress;  // stages "read scan", "read reference", "deviation", "write"
+
+  // False (and why, naming the option) for a missing input path, a unit factor or distance that is not > 0, a
+  // tolerance that is not > 0, an output with the wrong extension, or a histogram path without a renderer.
+  bool IsValid(std::string* error) const;
+};
+
+struct CompareResult {
+  std::size_t scan_points = 0;
+  std::size_t reference_points = 0;
+  std::size_t reference_faces = 0;                               // 0: the reference is a cloud, the deviations unsigned
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // as applied, translation in mm
+  DeviationResult deviation;                                     // per scan point, in the scan's order
+  DeviationStatistics statistics;
+  std::vector<std::string> warnings;  // the readers' (ignored properties, ...) and doubts about units or placement
+  std::string out_deviation_path;     // the files written (empty when not asked for)
+  std::string out_histogram_path;
+};
+
+// Throws conform::Error naming the file or the option: invalid options, an unreadable or empty input, NaN/Inf
+// coordinates, a transform file that is not a rigid transform, an output that cannot be written (and then
+// no output is left behind).
+CompareResult run_compare(const CompareOptions& options);
+
+}  // namespace conform

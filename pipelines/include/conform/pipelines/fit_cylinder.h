@@ -1,0 +1,46 @@
+#pragma once
+// `conform fit-cylinder`: the axis, radius and inliers of a scanned tube (fitting/cylinder.h), read from any cloud or
+// mesh file, with an optional CSV of every point's distance to the fitted surface.
+//
+// Normals: the file's own when it has them; PCA normals oriented by the faces for a mesh; PCA normals (orientation
+// unknown) for a bare cloud.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "conform/fitting/cylinder.h"
+
+namespace conform {
+
+struct FitCylinderJobOptions {
+  std::string input_path;  // .ply .stl .obj .pcd .xyz .txt .asc .csv
+  CylinderFitOptions fit;  // threshold, radius bounds, axis prior, seed, normal_neighbors, progress ...
+  std::string out_path;    // CSV to write, whole or not at all; empty: none
+
+  // False (and why) when the input path is empty, the output is not .csv, or the fit options are not valid.
+  bool IsValid(std::string* error) const;
+};
+
+enum class NormalSource { kFile, kMeshPca, kCloudPca };
+const char* to_string(NormalSource source);  // "file", "pca (mesh faces)", "pca"
+
+struct FitCylinderJobResult {
+  CylinderFitResult fit;
+  std::string input_path;
+  std::size_t points = 0;
+  NormalSource normals = NormalSource::kFile;
+  std::vector<std::string> warnings;  // what the reader noticed
+  std::string out_path;               // the CSV written; empty when none was asked for
+};
+
+// Throws conform::Error naming the file (unreadable, malformed, NaN coordinates, too few points, all points on a
+// line) or the bad option. A plane, a sphere or too few inliers is a result with fit.ok false (and the CSV is still
+// written when asked for, so that the failure can be inspected).
+FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options);
+
+// The CSV: header `i,x_mm,y_mm,z_mm,distance_mm,inlier`, one row per input point in file order, distance signed
+// (positive away from the axis), 6 decimals; inlier 1 or 0.
+std::string cylinder_residuals_csv(const std::vector<Eigen::Vector3d>& points, const CylinderFitResult& fit);
+
+}  // namespace conform

@@ -1,0 +1,194 @@
+#include "conform/pipelines/align.h"
+
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "align_inputs.h"
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/io.h"
+#include "conform/core/transform_io.h"
+#include "conform/registration/downsample.h"
+
+namespace conform {
+
+namespace {
+
+// The automatic maximum pair distance, as a share of the reference's bounding-box diagonal: wide enough for a scan
+// placed within a few degrees and a few percent, narrow enough that a scan beside the part finds nothing.
+constexpr double kAutoDistanceShare = 0.1;
+
+std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const AlignOptions& options) {
+  if (options.scan_voxel_mm > 0.0) points = voxel_downsample(points, options.scan_voxel_mm);
+  return stride_downsample(points, options.max_scan_points);
+}
+
+IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm) {
+  IcpOptions icp;
+  icp.method = method;
+  icp.max_correspondence_distance_mm = max_distance_mm;
+  icp.overlap = options.overlap;
+  icp.kernel = options.kernel;
+  icp.max_iterations = options.max_iterations;
+  icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, options.overlap);
+  icp.progress = options.progress;
+  return icp;
+}
+
+// Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
+void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                    const AlignOptions& options, double max_distance_mm, AlignResult& result) {
+  switch (options.init) {
+    case AlignInit::kNone:
+      result.start = "identity";
+      return;
+    case AlignInit::kPairs:
+      result.pairs = align_point_pairs(detail::read_point_pairs(options.pairs_path, options.mm_per_unit));
+      result.T_start = result.pairs.T_ref_scan;
+      result.start = "pairs";
+      return;
+    case AlignInit::kPca:
+    case AlignInit::kFpfh:
+      break;
+  }
+  CoarseOptions coarse;
+  coarse.method = options.init == AlignInit::kPca ? CoarseMethod::kPca : CoarseMethod::kFpfh;
+  coarse.fpfh.seed = options.seed;
+  // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
+  coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm);
+  coarse.multi_start.probe.max_iterations = 15;
+  coarse.multi_start.probe.progress = nullptr;
+  coarse.progress = options.progress;
+  result.coarse = coarse_align(scan, reference, coarse);
+  result.T_start = result.coarse.T_ref_scan;
+  result.start = result.coarse.winner;
+  const MultiStartResult& ranking = result.coarse.ranking;
+  if (ranking.ambiguous) {
+    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
+    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label + "' fits almost as well (" +
+                              std::to_string(other.score_mm) + " mm against " + std::to_string(best.score_mm) +
+                              " mm) at another pose; the part may be symmetric. Check the result, or give point "
+                              "pairs (--init pairs:FILE)");
+  }
+}
+
+// The transform and the aligned scan, both or neither.
+void write_outputs(const Mesh& scan_mesh, const AlignOptions& options, AlignResult& result) {
+  if (options.out_transform_path.empty() && options.out_aligned_path.empty()) return;
+  report(options.progress, "write", 0.0);
+  if (!options.out_transform_path.empty()) {
+    write_transform(options.out_transform_path, result.icp.T_ref_scan);
+    result.transform_path = options.out_transform_path;
+  }
+  if (!options.out_aligned_path.empty()) {
+    try {
+      const Mesh aligned = transformed(scan_mesh, result.icp.T_ref_scan);
+      if (aligned.has_faces()) {
+        write_mesh(options.out_aligned_path, aligned);
+      } else {
+        write_cloud(options.out_aligned_path, to_cloud(aligned));
+      }
+    } catch (...) {
+      if (!result.transform_path.empty()) std::remove(result.transform_path.c_str());
+      result.transform_path.clear();
+      throw;
+    }
+    result.aligned_path = options.out_aligned_path;
+  }
+  report(options.progress, "write", 1.0);
+}
+
+}  // namespace
+
+const char* to_string(AlignInit init) {
+  switch (init) {
+    case AlignInit::kNone:
+      return "none";
+    case AlignInit::kPca:
+      return "pca";
+    case AlignInit::kFpfh:
+      return "fpfh";
+    case AlignInit::kPairs:
+      return "pairs";
+  }
+  return "unknown";
+}
+
+bool AlignOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (scan_path.empty()) {
+    why = "no scan file given";
+  } else if (reference_path.empty()) {
+    why = "no reference file given";
+  } else if (!(mm_per_unit > 0.0) || !std::isfinite(mm_per_unit)) {
+    why = "mm_per_unit must be finite and > 0";
+  } else if (init == AlignInit::kPairs && pairs_path.empty()) {
+    why = "init pairs needs a pairs file";
+  } else if (!(max_distance_mm >= 0.0) || std::isnan(max_distance_mm)) {
+    why = "max distance must be > 0 mm (0: automatic)";
+  } else if (!(overlap > 0.0 && overlap <= 1.0)) {
+    why = "overlap " + std::to_string(overlap) + " must be in (0, 1]";
+  } else if (max_iterations < 1) {
+    why = "max iterations must be >= 1";
+  } else if (!(scan_voxel_mm >= 0.0) || !std::isfinite(scan_voxel_mm)) {
+    why = "scan voxel must be finite and >= 0 mm";
+  } else if (max_scan_points < 10) {
+    why = "max_scan_points must be >= 10";
+  } else if (!(max_size_ratio == 0.0 || max_size_ratio > 1.0)) {
+    why = "max_size_ratio must be > 1 (0: no check)";
+  }
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+AlignResult run_align(const AlignOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("align: " + why);
+  AlignResult result;
+  result.init = options.init;
+
+  report(options.progress, "read scan", 0.0);
+  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.mm_per_unit, result.warnings);
+  report(options.progress, "read reference", 0.0);
+  Mesh reference_mesh =
+      detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit, result.warnings);
+  if (options.max_size_ratio > 0.0) {
+    detail::check_sizes(scan_mesh, reference_mesh, options.scan_path, options.reference_path, options.max_size_ratio);
+  }
+  result.method =
+      options.method.value_or(reference_mesh.has_faces() ? IcpMethod::kPointToSurface : IcpMethod::kPointToPlane);
+  if (result.method == IcpMethod::kPointToSurface && !reference_mesh.has_faces()) {
+    throw Error(options.reference_path + ": point-to-surface needs a reference mesh with faces; this file holds " +
+                "points only (use point-to-plane)");
+  }
+  std::size_t merged = 0;
+  const std::vector<Eigen::Vector3d> unique = detail::unique_points(scan_mesh.vertices, &merged);
+  if (merged > 0) {
+    result.warnings.push_back(options.scan_path + ": " + std::to_string(merged) + " duplicate points merged");
+  }
+  const std::vector<Eigen::Vector3d> scan = thin(unique, options);
+  if (!reference_mesh.has_faces()) {
+    std::size_t ref_merged = 0;
+    reference_mesh.vertices = detail::unique_points(reference_mesh.vertices, &ref_merged);
+    reference_mesh.normals.clear();
+  }
+  result.scan_points = scan_mesh.vertices.size();
+  result.scan_points_used = scan.size();
+  result.reference_points = reference_mesh.vertices.size();
+  result.reference_faces = reference_mesh.faces.size();
+
+  report(options.progress, "normals", 0.0);
+  const IcpReference reference(reference_mesh);
+  report(options.progress, "normals", 1.0);
+  result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
+                                                         : kAutoDistanceShare * bounding_box(reference_mesh).diagonal();
+  place_coarsely(scan, reference, options, result.max_distance_mm, result);
+  result.icp = icp(scan, reference, result.T_start, fine_options(options, result.method, result.max_distance_mm));
+  if (result.icp.converged) write_outputs(scan_mesh, options, result);
+  return result;
+}
+
+}  // namespace conform

@@ -1,0 +1,126 @@
+#include "align_inputs.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <unordered_set>
+#include <utility>
+
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/io.h"
+#include "conform/core/units.h"
+
+namespace conform::detail {
+
+namespace {
+
+// Hash of a point's exact bits, for merging duplicates.
+struct PointHash {
+  std::size_t operator()(const std::array<double, 3>& p) const {
+    std::size_t h = 1469598103934665603ULL;
+    for (double v : p) h = (h ^ std::hash<double>{}(v)) * 1099511628211ULL;
+    return h;
+  }
+};
+
+// The named unit mix-up closest to a size ratio (>= 1), or "" when none is near.
+std::string likely_units(double ratio) {
+  const std::pair<double, const char*> known[] = {{1000.0, "metres against millimetres"},
+                                                  {25.4, "inches against millimetres"},
+                                                  {10.0, "centimetres against millimetres"},
+                                                  {100.0, "metres against centimetres"}};
+  for (const auto& [factor, words] : known) {
+    if (std::abs(std::log(ratio / factor)) < std::log(1.5)) return words;
+  }
+  return "";
+}
+
+// Numbers on one line of the pairs file: spaces, tabs or commas between them; '#' ends the line.
+bool parse_numbers(std::string line, std::vector<double>& out) {
+  out.clear();
+  line = line.substr(0, line.find('#'));
+  std::replace(line.begin(), line.end(), ',', ' ');
+  const char* p = line.c_str();
+  while (true) {
+    while (*p == ' ' || *p == '\t' || *p == '\r') ++p;
+    if (*p == '\0') return true;
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p || !std::isfinite(v) || (*end != '\0' && *end != ' ' && *end != '\t' && *end != '\r')) return false;
+    out.push_back(v);
+    p = end;
+  }
+}
+
+}  // namespace
+
+Mesh read_for_alignment(const std::string& path, const char* what, double mm_per_unit,
+                        std::vector<std::string>& warnings) {
+  ReadOptions read;
+  read.non_finite = NonFinitePolicy::kDrop;
+  ReadReport report;
+  Mesh mesh = read_geometry(path, read, &report);
+  for (const std::string& w : report.warnings) warnings.push_back(w);  // they name the file
+  if (mesh.vertices.empty()) {
+    throw Error(path + ": the " + std::string(what) + " holds no points" +
+                (report.non_finite_points > 0 ? " (all had NaN or infinite coordinates)" : ""));
+  }
+  if (mm_per_unit != 1.0) scale_in_place(mesh, mm_per_unit);
+  return mesh;
+}
+
+std::vector<Eigen::Vector3d> unique_points(const std::vector<Eigen::Vector3d>& points, std::size_t* merged) {
+  std::unordered_set<std::array<double, 3>, PointHash> seen;
+  seen.reserve(points.size());
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (seen.insert({p.x(), p.y(), p.z()}).second) out.push_back(p);
+  }
+  *merged = points.size() - out.size();
+  return out;
+}
+
+void check_sizes(const Mesh& scan, const Mesh& reference, const std::string& scan_path,
+                 const std::string& reference_path, double max_ratio) {
+  const double s = bounding_box(scan).diagonal(), r = bounding_box(reference).diagonal();
+  if (!(s > 0.0) || !(r > 0.0)) return;
+  const double ratio = std::max(s / r, r / s);
+  if (ratio <= max_ratio) return;
+  const std::string larger = s > r ? scan_path : reference_path;
+  const std::string guess = likely_units(ratio);
+  throw Error("the scan (" + scan_path + ", " + std::to_string(s) + " across) and the reference (" + reference_path +
+              ", " + std::to_string(r) + " across) differ in size by a factor of " + std::to_string(ratio) +
+              (guess.empty() ? "" : ", like " + guess) + ": are they in different units? Convert one of them (e.g. " +
+              larger + "); --units scales both inputs to millimetres alike");
+}
+
+std::vector<PointPair> read_point_pairs(const std::string& path, double mm_per_unit) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the point pairs file");
+  std::vector<PointPair> pairs;
+  std::string line;
+  std::vector<double> v;
+  constexpr std::size_t kMaxPairs = 1000000;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    if (!parse_numbers(line, v)) throw Error(where + "not a list of numbers: '" + line + "'");
+    if (v.empty()) continue;
+    if (v.size() != 6) {
+      throw Error(where + std::to_string(v.size()) + " numbers; a pair is 6: scan x y z, then reference x y z");
+    }
+    if (pairs.size() == kMaxPairs) throw Error(path + ": more than a million point pairs");
+    pairs.push_back({Eigen::Vector3d(v[0], v[1], v[2]) * mm_per_unit, Eigen::Vector3d(v[3], v[4], v[5]) * mm_per_unit});
+  }
+  if (in.bad()) throw Error(path + ": read error");
+  if (pairs.size() < 3) {
+    throw Error(path + ": holds " + std::to_string(pairs.size()) + " point pairs; at least 3 are needed");
+  }
+  return pairs;
+}
+
+}  // namespace conform::detail

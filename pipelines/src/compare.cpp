@@ -1,0 +1,140 @@
+#include "conform/pipelines/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "conform/core/atomic_file.h"
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/io.h"
+#include "conform/core/transform_io.h"
+#include "conform/core/units.h"
+
+namespace conform {
+
+namespace {
+
+bool wrong_extension(const std::string& path, const char* extension) {
+  return !path.empty() && file_extension(path) != extension;
+}
+
+std::string invalid_reason(const CompareOptions& o) {
+  if (o.scan_path.empty()) return "no scan: give the scan file (--scan)";
+  if (o.reference_path.empty()) return "no reference: give the reference file (--reference)";
+  if (!(std::isfinite(o.mm_per_unit) && o.mm_per_unit > 0.0)) return "millimetres per unit must be finite and > 0";
+  if (o.tolerance_mm && !(std::isfinite(*o.tolerance_mm) && *o.tolerance_mm > 0.0)) {
+    return "--tolerance must be > 0 mm, not " + std::to_string(*o.tolerance_mm);
+  }
+  if (!(o.max_distance_mm > 0.0)) return "the maximum distance must be > 0 mm";
+  if (wrong_extension(o.out_deviation_path, ".ply"))
+    return "--out-deviation " + o.out_deviation_path + ": must be .ply";
+  if (wrong_extension(o.out_histogram_path, ".png"))
+    return "--out-histogram " + o.out_histogram_path + ": must be .png";
+  if (!o.out_histogram_path.empty() && !o.histogram) return "a histogram file was asked for but no renderer given";
+  return "";
+}
+
+Mesh read_input(const std::string& path, double mm_per_unit, const char* stage, const ProgressFn& progress,
+                std::vector<std::string>& warnings) {
+  report(progress, stage, 0.0);
+  ReadReport report_;
+  Mesh mesh = read_geometry(path, {}, &report_);
+  warnings.insert(warnings.end(), report_.warnings.begin(), report_.warnings.end());
+  if (mesh.vertices.empty()) throw Error(path + ": holds no points");
+  if (mm_per_unit != 1.0) scale_in_place(mesh, mm_per_unit);
+  report(progress, stage, 1.0);
+  return mesh;
+}
+
+// Doubts worth a line on stderr: sizes a thousand times apart (files in different units), or a scan that lies
+// nowhere near the reference (not aligned: pass --transform).
+void add_doubts(const Mesh& scan, const Mesh& reference, const CompareOptions& options, CompareResult& result) {
+  const double scan_size = bounding_box(scan).diagonal();
+  const double reference_size = bounding_box(reference).diagonal();
+  const double ratio = std::max(scan_size, reference_size) / std::max(std::min(scan_size, reference_size), 1e-300);
+  if (scan_size > 0.0 && reference_size > 0.0 && ratio > 100.0) {
+    char text[200];
+    std::snprintf(text, sizeof(text), "%.4g mm across, the reference %.4g mm: a factor of %.0f", scan_size,
+                  reference_size, ratio);
+    result.warnings.push_back("the scan is " + std::string(text) +
+                              ". Are both in the same units? (--units applies to both)");
+  }
+  if (result.statistics.count > 0 && std::abs(result.statistics.p50_mm) > 0.25 * reference_size) {
+    result.warnings.push_back(
+        "half the scan points are farther from the reference than a quarter of its size: is the scan in the "
+        "reference frame? (" +
+        std::string(options.transform_path.empty() ? "no --transform was given" : "check the --transform") + ")");
+  }
+}
+
+void write_outputs(const CompareOptions& options, const Mesh& scan_ref, CompareResult& result) {
+  if (options.out_deviation_path.empty() && options.out_histogram_path.empty()) return;
+  report(options.progress, "write", 0.0);
+  // The picture first, in memory: a failure there leaves nothing on disk.
+  const std::string png = options.out_histogram_path.empty()
+                              ? std::string()
+                              : options.histogram(result.deviation.deviation_mm, result.statistics);
+  if (!options.out_deviation_path.empty()) {
+    VertexAttributes attributes;
+    std::vector<float> values(result.deviation.deviation_mm.begin(), result.deviation.deviation_mm.end());
+    attributes.scalars.push_back({"deviation_mm", std::move(values)});
+    if (options.colour) {
+      attributes.colors.reserve(scan_ref.vertices.size());
+      for (double d : result.deviation.deviation_mm) attributes.colors.push_back(options.colour(d, result.statistics));
+    }
+    write_ply_with_attributes(options.out_deviation_path, scan_ref, attributes);
+    result.out_deviation_path = options.out_deviation_path;
+  }
+  if (!options.out_histogram_path.empty()) {
+    try {
+      write_file_atomically(options.out_histogram_path, png);
+    } catch (...) {
+      if (!result.out_deviation_path.empty()) std::remove(result.out_deviation_path.c_str());  // all or nothing
+      result.out_deviation_path.clear();
+      throw;
+    }
+    result.out_histogram_path = options.out_histogram_path;
+  }
+  report(options.progress, "write", 1.0);
+}
+
+}  // namespace
+
+bool CompareOptions::IsValid(std::string* error) const {
+  const std::string why = invalid_reason(*this);
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+CompareResult run_compare(const CompareOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  CompareResult result;
+  Mesh scan = read_input(options.scan_path, options.mm_per_unit, "read scan", options.progress, result.warnings);
+  if (!options.transform_path.empty()) {
+    result.T_ref_scan = read_transform(options.transform_path);
+    result.T_ref_scan.translation() *= options.mm_per_unit;
+    scan = transformed(scan, result.T_ref_scan);
+  }
+  const Mesh reference =
+      read_input(options.reference_path, options.mm_per_unit, "read reference", options.progress, result.warnings);
+  result.scan_points = scan.vertices.size();
+  result.reference_points = reference.vertices.size();
+  result.reference_faces = reference.faces.size();
+
+  DeviationOptions deviation;
+  deviation.max_distance_mm = options.max_distance_mm;
+  deviation.progress = options.progress;
+  result.deviation = compute_deviation(scan.vertices, reference, deviation);
+  DeviationStatisticsOptions statistics;
+  statistics.tolerance_mm = options.tolerance_mm;
+  result.statistics = deviation_statistics(result.deviation.deviation_mm, statistics);
+  add_doubts(scan, reference, options, result);
+  write_outputs(options, scan, result);
+  return result;
+}
+
+}  // namespace conform

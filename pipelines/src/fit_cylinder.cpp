@@ -1,0 +1,103 @@
+#include "conform/pipelines/fit_cylinder.h"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "conform/core/atomic_file.h"
+#include "conform/core/error.h"
+#include "conform/core/io.h"
+#include "conform/core/normals.h"
+
+namespace conform {
+namespace {
+
+std::vector<Eigen::Vector3d> normals_for(const Mesh& mesh, const FitCylinderJobOptions& options, NormalSource* source) {
+  if (mesh.has_normals()) {
+    *source = NormalSource::kFile;
+    return mesh.normals;
+  }
+  report(options.fit.progress, "cylinder: normals", 0.0);
+  std::vector<Eigen::Vector3d> normals;
+  if (mesh.has_faces()) {
+    *source = NormalSource::kMeshPca;
+    normals = estimate_normals(mesh, options.fit.normal_neighbors);
+  } else {
+    *source = NormalSource::kCloudPca;
+    NormalOptions pca;
+    pca.k = options.fit.normal_neighbors;
+    for (const auto& n : estimate_normals(to_cloud(mesh), pca))
+      normals.emplace_back(n.normal_x, n.normal_y, n.normal_z);
+  }
+  report(options.fit.progress, "cylinder: normals", 1.0);
+  return normals;
+}
+
+}  // namespace
+
+const char* to_string(NormalSource source) {
+  switch (source) {
+    case NormalSource::kFile:
+      return "file";
+    case NormalSource::kMeshPca:
+      return "pca (mesh faces)";
+    case NormalSource::kCloudPca:
+      return "pca";
+  }
+  return "unknown";
+}
+
+bool FitCylinderJobOptions::IsValid(std::string* error) const {
+  const auto fail = [error](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return false;
+  };
+  if (input_path.empty()) return fail("no input file given");
+  if (!out_path.empty() && file_extension(out_path) != ".csv") {
+    return fail(out_path + ": the residuals file must be .csv");
+  }
+  std::string why;
+  if (!fit.IsValid(&why)) return fail(why);
+  return true;
+}
+
+std::string cylinder_residuals_csv(const std::vector<Eigen::Vector3d>& points, const CylinderFitResult& fit) {
+  std::string csv = "i,x_mm,y_mm,z_mm,distance_mm,inlier\n";
+  csv.reserve(csv.size() + points.size() * 64);
+  std::size_t next_inlier = 0;
+  char row[160];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool inlier = next_inlier < fit.inliers.size() && static_cast<std::size_t>(fit.inliers[next_inlier]) == i;
+    next_inlier += inlier ? 1 : 0;
+    const Eigen::Vector3d& p = points[i];
+    std::snprintf(row, sizeof(row), "%zu,%.6f,%.6f,%.6f,%.6f,%d\n", i, p.x(), p.y(), p.z(),
+                  signed_distance(fit.cylinder, p), inlier ? 1 : 0);
+    csv += row;
+  }
+  return csv;
+}
+
+FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("fit-cylinder: " + why);
+  ReadReport report;
+  const Mesh mesh = read_geometry(options.input_path, ReadOptions{}, &report);  // NaN coordinates: an error
+  FitCylinderJobResult result;
+  result.input_path = options.input_path;
+  result.points = mesh.vertices.size();
+  result.warnings = report.warnings;
+  try {
+    const std::vector<Eigen::Vector3d> normals = normals_for(mesh, options, &result.normals);
+    result.fit = fit_cylinder(mesh.vertices, normals, options.fit);
+  } catch (const Error& e) {
+    throw Error(options.input_path + ": " + e.what());
+  }
+  if (result.normals == NormalSource::kCloudPca) result.fit.side = CylinderSide::kUnknown;
+  if (!options.out_path.empty()) {
+    write_file_atomically(options.out_path, cylinder_residuals_csv(mesh.vertices, result.fit));
+    result.out_path = options.out_path;
+  }
+  return result;
+}
+
+}  // namespace conform

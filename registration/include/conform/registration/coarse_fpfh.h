@@ -1,0 +1,51 @@
+#pragma once
+// Coarse alignment from local shape: both clouds voxel-downsampled, PCA normals (turned away from each cloud's
+// centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), and RANSAC over feature
+// matches with pre-rejection of inconsistent samples (Buch et al. 2013, PCL's SampleConsensusPrerejective).
+// Unlike PCA it works for partial overlap, as long as the overlap has distinctive shape.
+//
+// PCL's RANSAC draws from std::rand(): fpfh_ransac seeds it (std::srand) with options.seed before it runs, so the
+// result is reproducible, but calling it changes the global rand() state and it must not run concurrently with
+// other users of std::rand().
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace conform {
+
+struct FpfhOptions {
+  double voxel_mm = 0.0;              // downsampling voxel; 0: the reference's bounding-box diagonal / 30
+  double feature_radius = 5.0;        // FPFH support radius, in voxels
+  double inlier_distance = 1.5;       // a RANSAC inlier is within this many voxels of the reference
+  double min_inlier_fraction = 0.25;  // of the RANSAC scan points, for a hypothesis to count
+  int max_iterations = 3000;          // RANSAC hypotheses
+  // RANSAC samples from, and scores each hypothesis on, at most this many of the downsampled scan points (evenly
+  // strided; every reference point stays a candidate match): a hypothesis costs one nearest-neighbour search per
+  // point, and a few hundred points judge a coarse pose as well as thousands.
+  std::size_t ransac_points = 400;
+  int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
+  double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
+  std::uint64_t seed = 1;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct FpfhResult {
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+  bool found = false;            // a hypothesis reached min_inlier_fraction
+  double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance
+  double voxel_mm = 0.0;         // used
+  std::size_t scan_points = 0;   // after downsampling
+  std::size_t reference_points = 0;
+};
+
+// Throws conform::Error for invalid options or fewer than 10 points on either side after downsampling.
+FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference,
+                       const FpfhOptions& options);
+
+}  // namespace conform

@@ -1,0 +1,101 @@
+#pragma once
+// How fine ICP runs: the variant, the robust estimation, when to stop, which degrees of freedom may move.
+
+#include <cstddef>
+#include <limits>
+#include <string>
+
+#include "conform/core/progress.h"
+
+namespace conform {
+
+enum class IcpMethod {
+  // Besl & McKay 1992: each scan point paired with its nearest reference point; the step is Horn's closed form
+  // (horn.h). Converges linearly; biased by the reference's point spacing.
+  kPointToPoint,
+  // Chen & Medioni 1992: the distance along the reference normal at the nearest reference point; a Gauss-Newton step
+  // on the linearised rotation. Converges in a few iterations; needs reference normals (estimated when missing).
+  kPointToPlane,
+  // The closest point on the reference mesh's triangles (not only its vertices), then the distance along the
+  // surface normal there, solved as point-to-plane. Needs a reference with faces.
+  kPointToSurface,
+};
+
+// Down-weights large residuals r with a scale s estimated from the residuals themselves (1.4826 x their median
+// absolute value, the MAD of a zero-mean distribution; Huber 1981, Tukey's biweight after Beaton & Tukey 1974).
+enum class RobustKernel {
+  kNone,   // least squares
+  kHuber,  // w = 1 for |r| <= 1.345 s, else 1.345 s / |r|: 95% efficient under Gaussian noise
+  kTukey,  // w = (1 - (r / 4.685 s)^2)^2 for |r| < 4.685 s, else 0: ignores gross outliers entirely
+};
+
+enum class IcpTermination {
+  kFailure,                // not run, or stopped by an error (the default until proven otherwise)
+  kConverged,              // the last step moved less than both tolerances
+  kMaxIterations,          // the iteration limit came first
+  kTooFewCorrespondences,  // fewer scan points than needed found a reference point within the maximum distance
+  kInsufficientOverlap,    // converged, but fewer than min_inlier_fraction of the scan points are inliers
+};
+
+// "converged", "max_iterations", "too_few_correspondences", "insufficient_overlap", "failure" (the JSON words).
+const char* to_string(IcpTermination termination);
+const char* to_string(IcpMethod method);
+const char* to_string(RobustKernel kernel);
+
+// The degrees of freedom ICP may change, as rotations about the reference frame's axes through the scan's centroid
+// and translations along them. All free by default; e.g. a turntable: rx = ry = false, tz = false.
+struct FreeDof {
+  bool rx = true, ry = true, rz = true;
+  bool tx = true, ty = true, tz = true;
+
+  bool all() const { return rx && ry && rz && tx && ty && tz; }
+  int count() const { return int{rx} + int{ry} + int{rz} + int{tx} + int{ty} + int{tz}; }
+  bool free(int i) const { return i == 0 ? rx : i == 1 ? ry : i == 2 ? rz : i == 3 ? tx : i == 4 ? ty : tz; }
+};
+
+struct IcpOptions {
+  IcpMethod method = IcpMethod::kPointToPlane;
+
+  // --- robust estimation ---
+  // Pairs farther apart than this (Euclidean, mm) are ignored. Infinity: no limit.
+  double max_correspondence_distance_mm = std::numeric_limits<double>::infinity();
+  // Trimmed ICP (Chetverikov et al. 2002; CloudCompare's "final overlap"): only this fraction of the scan points,
+  // those with the smallest distances, takes part in each step. In (0, 1]; 1 keeps every pair within the distance.
+  double overlap = 1.0;
+  RobustKernel kernel = RobustKernel::kHuber;
+  // The kernel's scale never drops below this (mm), so that a noise-free fit does not weight its last residuals of
+  // 1e-12 mm against each other.
+  double min_kernel_scale_mm = 1e-3;
+
+  // --- termination: stop when a step rotates less than this and moves the scan's centroid less than that ---
+  // Tight enough that a noise-free fit lands within 1e-6 mm; loose enough that real data, whose pairs can flip back
+  // and forth by a hair, stops.
+  double rotation_tolerance_rad = 1e-6;  // 5.7e-5 deg
+  double translation_tolerance_mm = 1e-4;
+  int max_iterations = 50;  // steps in all, both stages of multi-resolution
+  // Multi-resolution: a scan of more than twice this many points first iterates on an even subset of this many, to
+  // 100 times the tolerances, then on every point. The subset takes the big steps cheaply; the result is the full
+  // set's. 0: every point in every step.
+  std::size_t coarse_points = 20000;
+  // Fewer pairs than this in a step: stop (kTooFewCorrespondences). At least 3.
+  std::size_t min_correspondences = 6;
+  // A converged fit with fewer inliers than this fraction of the scan points is reported as not converged
+  // (kInsufficientOverlap): it matched a sliver of the scan. In [0, overlap].
+  double min_inlier_fraction = 0.05;
+
+  // --- degrees of freedom ---
+  FreeDof free_dof;
+  // Directions of the point-to-plane normal matrix whose eigenvalue is below this fraction of the largest are
+  // degenerate (degeneracy.h); in (0, 1).
+  double degeneracy_threshold = 1e-3;
+  // Hold degenerate directions at their start value instead of letting noise move them (Zhang et al. 2016, "On
+  // degeneracy of optimization-based state estimation problems"). They are reported either way.
+  bool freeze_degenerate = true;
+
+  ProgressFn progress;  // stage "icp", fraction = iteration / max_iterations
+
+  // False (and why, naming the option) for values out of range or not finite.
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace conform

@@ -1,0 +1,49 @@
+#pragma once
+// The fixed side of a registration, prepared once and shared by every start and every ICP run against it: the
+// reference points in double, one unit normal per point, a kd-tree over the points and, for a mesh, an index over
+// its triangles (point-to-surface), built on first use. Thread-safe to query.
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "conform/core/cloud.h"
+#include "conform/core/mesh.h"
+#include "conform/core/nearest_neighbors.h"
+#include "conform/core/triangle_index.h"
+
+namespace conform {
+
+class IcpReference {
+ public:
+  // Normals: the mesh's own when it has them, else area-weighted from its faces, else PCA over 16 neighbours
+  // (turned away from the centroid).
+  // Throws conform::Error when the mesh has fewer than 3 points or a non-finite one.
+  explicit IcpReference(const Mesh& reference);
+  explicit IcpReference(const Cloud& reference);
+  ~IcpReference();
+  IcpReference(IcpReference&&) noexcept;
+  IcpReference& operator=(IcpReference&&) noexcept;
+
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  const std::vector<Eigen::Vector3d>& normals() const { return normals_; }
+  const KdTree& tree() const { return *tree_; }
+  bool has_surface() const { return !faces_.empty(); }
+  // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
+  const TriangleIndex& surface() const;
+  std::size_t size() const { return points_.size(); }
+
+ private:
+  void build(Mesh mesh);
+
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<Eigen::Vector3d> normals_;
+  std::vector<Face> faces_;
+  std::unique_ptr<KdTree> tree_;
+  mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
+  mutable std::unique_ptr<TriangleIndex> surface_;
+};
+
+}  // namespace conform

@@ -1,0 +1,46 @@
+#pragma once
+// Several coarse starts, one answer: a short ICP from each start on a subset of the scan, ranked by a truncated RMS
+// that charges every scan point (sqrt(mean(min(d, max_distance)^2)), so that a start matching a small part well
+// does not beat one matching all of it), the best one named. Ambiguous when another start ends almost as well
+// somewhere else (a symmetric part): then the winner is a coin toss the user should know about.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "conform/registration/coarse_pca.h"
+#include "conform/registration/icp.h"
+
+namespace conform {
+
+struct MultiStartOptions {
+  IcpOptions probe;                 // the short ICP from each start (its max_iterations: keep small, e.g. 15)
+  std::size_t probe_points = 3000;  // scan points the probes use, evenly strided (all when fewer)
+  // Another start whose score is within this fraction of the best, ending more than 2 degrees or 1% of the scan's
+  // size away from the best, makes the result ambiguous.
+  double ambiguity = 0.2;
+
+  MultiStartOptions() { probe.max_iterations = 15; }
+  bool IsValid(std::string* error) const;
+};
+
+struct StartReport {
+  std::string label;
+  Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_probe = Eigen::Isometry3d::Identity();  // where its short ICP ended
+  double score_mm = 0.0;                                      // truncated RMS at T_probe, lower is better
+  double inlier_fraction = 0.0;
+};
+
+struct MultiStartResult {
+  std::vector<StartReport> starts;  // in the order given
+  int best = -1;                    // index into starts
+  bool ambiguous = false;
+  int runner_up = -1;  // the start that made it ambiguous, else -1
+};
+
+// Throws conform::Error for no starts or invalid options.
+MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                             const std::vector<CoarseStart>& starts, const MultiStartOptions& options);
+
+}  // namespace conform

@@ -1,0 +1,157 @@
+// PCL's RANSAC templates, instantiated here, make GCC 12 report -Warray-bounds false positives inside Eigen's SSE
+// loads of 3-float vectors (Umeyama in TransformationEstimationSVD). The warning is located in the intrinsics
+// header, so the pragma must cover its first inclusion, before any other include.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"
+#include "conform/registration/coarse_fpfh.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+
+#include <pcl/features/fpfh_omp.h>
+#include <pcl/registration/sample_consensus_prerejective.h>
+#include <pcl/search/kdtree.h>
+
+#include "conform/core/cloud.h"
+#include "conform/core/error.h"
+#include "conform/core/normals.h"
+#include "conform/registration/downsample.h"
+#pragma GCC diagnostic pop
+
+namespace conform {
+
+namespace {
+
+using Points = pcl::PointCloud<pcl::PointXYZ>;
+using Features = pcl::PointCloud<pcl::FPFHSignature33>;
+
+constexpr std::size_t kMinPoints = 10;
+constexpr int kNormalNeighbours = 16;
+
+struct Described {
+  Points::Ptr points{new Points};
+  Features::Ptr features{new Features};
+};
+
+// Downsampled points, relative to `origin` so that float keeps their precision, with their FPFH descriptors.
+Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin, double voxel_mm,
+                   double radius_mm, const char* what) {
+  const std::vector<Eigen::Vector3d> down = voxel_downsample(input, voxel_mm);
+  if (down.size() < kMinPoints) {
+    throw Error(std::string("FPFH: the ") + what + " has " + std::to_string(down.size()) + " points after " +
+                std::to_string(voxel_mm) + " mm voxels; at least " + std::to_string(kMinPoints) +
+                " are needed (a smaller voxel?)");
+  }
+  Cloud cloud;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : down) {
+    const Eigen::Vector3f q = (p - origin).cast<float>();
+    cloud.points.push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
+    mean += p - origin;
+  }
+  NormalOptions normal_options;
+  normal_options.k = kNormalNeighbours;
+  normal_options.viewpoint = mean / static_cast<double>(down.size());
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>(estimate_normals(cloud, normal_options)));
+  // Away from the centroid rather than towards it: the same rule on both sides keeps the histograms comparable.
+  for (pcl::Normal& n : *normals) n.getNormalVector3fMap() *= -1.0f;
+
+  Described d;
+  *d.points = cloud.points;
+  pcl::FPFHEstimationOMP<pcl::PointXYZ, pcl::Normal, pcl::FPFHSignature33> fpfh;
+  fpfh.setInputCloud(d.points);
+  fpfh.setInputNormals(normals);
+  fpfh.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+  fpfh.setRadiusSearch(radius_mm);
+  fpfh.compute(*d.features);
+  return d;
+}
+
+// At most `count` of the described points (and their features), at even steps.
+Described strided(const Described& all, std::size_t count) {
+  const std::size_t n = all.points->size();
+  if (n <= count) return all;
+  Described out;
+  for (std::size_t k = 0; k < count; ++k) {
+    out.points->push_back((*all.points)[k * n / count]);
+    out.features->push_back((*all.features)[k * n / count]);
+  }
+  return out;
+}
+
+double auto_voxel(const std::vector<Eigen::Vector3d>& reference) {
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : reference) box.extend(p);
+  return box.diagonal().norm() / 30.0;
+}
+
+}  // namespace
+
+bool FpfhOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (!(voxel_mm >= 0.0) || !std::isfinite(voxel_mm)) {
+    why = "voxel_mm must be finite and >= 0 (0: automatic)";
+  } else if (!(feature_radius > 1.0) || !std::isfinite(feature_radius)) {
+    why = "feature_radius must be finite and > 1 voxel";
+  } else if (!(inlier_distance > 0.0) || !std::isfinite(inlier_distance)) {
+    why = "inlier_distance must be finite and > 0 voxels";
+  } else if (!(min_inlier_fraction >= 0.0 && min_inlier_fraction <= 1.0)) {
+    why = "min_inlier_fraction must be in [0, 1]";
+  } else if (ransac_points < 3) {
+    why = "ransac_points must be >= 3";
+  } else if (max_iterations < 1) {
+    why = "max_iterations must be >= 1";
+  } else if (correspondence_randomness < 1) {
+    why = "correspondence_randomness must be >= 1";
+  } else if (!(similarity >= 0.0 && similarity < 1.0)) {
+    why = "similarity must be in [0, 1)";
+  }
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference,
+                       const FpfhOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("FPFH options: " + why);
+  if (reference.empty() || scan.empty()) throw Error("FPFH: the scan or the reference has no points");
+  FpfhResult result;
+  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(reference);
+  const double v = result.voxel_mm;
+  // Each side relative to its own first point: PCL computes in float.
+  const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
+  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, "scan");
+  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, "reference");
+  result.scan_points = s.points->size();
+  result.reference_points = r.points->size();
+
+  const Described sample = strided(s, options.ransac_points);
+  pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, pcl::FPFHSignature33> ransac;
+  ransac.setInputSource(sample.points);
+  ransac.setSourceFeatures(sample.features);
+  ransac.setInputTarget(r.points);
+  ransac.setTargetFeatures(r.features);
+  ransac.setMaximumIterations(options.max_iterations);
+  ransac.setNumberOfSamples(3);
+  ransac.setCorrespondenceRandomness(options.correspondence_randomness);
+  ransac.setSimilarityThreshold(static_cast<float>(options.similarity));
+  ransac.setMaxCorrespondenceDistance(options.inlier_distance * v);
+  ransac.setInlierFraction(static_cast<float>(options.min_inlier_fraction));
+  std::srand(static_cast<unsigned>(options.seed ^ (options.seed >> 32)));
+  Points aligned;
+  ransac.align(aligned);
+  result.found = ransac.hasConverged();
+  result.inlier_fraction = static_cast<double>(ransac.getInliers().size()) / static_cast<double>(sample.points->size());
+  // T_ref_scan = shift(ref_origin) * T_local * shift(-scan_origin).
+  const Eigen::Matrix4d local = ransac.getFinalTransformation().cast<double>();
+  const Eigen::Matrix3d rotation = Eigen::Quaterniond(local.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = rotation;
+  T.translation() = ref_origin + local.topRightCorner<3, 1>() - rotation * scan_origin;
+  result.T_ref_scan = T;
+  return result;
+}
+
+}  // namespace conform

@@ -1,0 +1,118 @@
+#include "conform/registration/degeneracy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include "plane_matrix.h"
+
+namespace conform {
+
+namespace {
+
+// A degenerate motion whose rotation part (in the scaled coordinates, of a unit vector) is below this is a pure
+// translation; above, a rotation. Exact subspaces give 0 or O(1); noise leaves ~1e-3.
+constexpr double kPureTranslation = 0.1;
+
+// v or -v, whichever has its largest component positive, so that a report does not flip with rounding.
+Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
+  Eigen::Index i = 0;
+  v.cwiseAbs().maxCoeff(&i);
+  return v(i) < 0.0 ? Eigen::Vector3d(-v) : v;
+}
+
+// The columns of the identity for the free degrees of freedom (rx ry rz tx ty tz).
+Eigen::MatrixXd free_basis(const FreeDof& free_dof) {
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(6, free_dof.count());
+  for (int i = 0, c = 0; i < 6; ++i) {
+    if (free_dof.free(i)) P(i, c++) = 1.0;
+  }
+  return P;
+}
+
+// Splits the degenerate subspace D (orthonormal columns) into pure translations and rotations: the right singular
+// vectors of D's rotation rows with (near) zero singular value combine to translations, the others to rotations,
+// whose axis point is c + w x v / |w|^2 once the degenerate translations are taken out of v.
+void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, DegeneracyReport& report) {
+  const Eigen::MatrixXd W = D.topRows(3);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W, Eigen::ComputeFullV);
+  const Eigen::MatrixXd V = svd.matrixV();
+  const Eigen::VectorXd sigma = svd.singularValues();
+  struct Twist {
+    Vector6d x;  // scaled: (w L, v)
+    double relative_eigenvalue;
+  };
+  std::vector<Twist> rotations;
+  std::vector<Eigen::Vector3d> translations;
+  for (Eigen::Index j = 0; j < V.cols(); ++j) {
+    const Vector6d x = D * V.col(j);
+    const double relative = largest > 0.0 ? x.dot(H * x) / largest : 0.0;
+    if ((j < sigma.size() ? sigma(j) : 0.0) >= kPureTranslation) {
+      rotations.push_back({x, relative});
+      continue;
+    }
+    DegenerateDirection d;
+    d.kind = MotionKind::kTranslation;
+    d.direction = canonical(x.tail<3>().normalized());
+    d.point = report.centre;
+    d.relative_eigenvalue = relative;
+    translations.push_back(d.direction);
+    report.directions.push_back(d);
+  }
+  for (const Twist& t : rotations) {
+    // The twist moves p by w x (p - c) + v; its axis passes through c + w x v / |w|^2 with pitch w . v / |w|^2.
+    const Eigen::Vector3d w = canonical(t.x.head<3>()) / report.length_scale_mm;
+    const double sign = t.x.head<3>().dot(w) < 0.0 ? -1.0 : 1.0;
+    Eigen::Vector3d v = sign * t.x.tail<3>();
+    for (const Eigen::Vector3d& u : translations) v -= v.dot(u) * u;
+    DegenerateDirection d;
+    d.kind = MotionKind::kRotation;
+    d.direction = w.normalized();
+    d.point = report.centre + w.cross(v) / w.squaredNorm();
+    d.pitch_mm_per_rad = w.dot(v) / w.squaredNorm();
+    d.relative_eigenvalue = t.relative_eigenvalue;
+    report.directions.push_back(d);
+  }
+}
+
+}  // namespace
+
+double DegeneracyReport::relative_smallest() const {
+  if (eigenvalues.size() == 0 || !(eigenvalues(eigenvalues.size() - 1) > 0.0)) return 0.0;
+  return eigenvalues(0) / eigenvalues(eigenvalues.size() - 1);
+}
+
+PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, const std::vector<Eigen::Vector3d>& n) {
+  return detail::plane_normal_matrix_of(
+      q.size() < n.size() ? q.size() : n.size(), [&](std::size_t i) -> const Eigen::Vector3d& { return q[i]; },
+      [&](std::size_t i) -> const Eigen::Vector3d& { return n[i]; });
+}
+
+DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof) {
+  DegeneracyReport report;
+  report.threshold = threshold;
+  report.centre = matrix.centre;
+  report.length_scale_mm = matrix.length_scale_mm;
+  const Eigen::MatrixXd P = free_basis(free_dof);
+  if (P.cols() == 0) return report;
+  const Eigen::MatrixXd Hf = P.transpose() * matrix.H * P;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(Hf);
+  report.eigenvalues = solver.eigenvalues().cwiseMax(0.0);
+  const double largest = report.eigenvalues(report.eigenvalues.size() - 1);
+  std::vector<Eigen::Index> degenerate;
+  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) {
+    if (!(report.eigenvalues(i) >= threshold * largest) || !(largest > 0.0)) degenerate.push_back(i);
+  }
+  if (degenerate.empty()) return report;
+  Eigen::MatrixXd D(6, static_cast<Eigen::Index>(degenerate.size()));
+  for (std::size_t k = 0; k < degenerate.size(); ++k) {
+    D.col(static_cast<Eigen::Index>(k)) = P * solver.eigenvectors().col(degenerate[k]);
+    report.degenerate_basis.push_back(D.col(static_cast<Eigen::Index>(k)));
+  }
+  if (report.length_scale_mm > 0.0) split_motions(D, matrix.H, largest, report);
+  return report;
+}
+
+}  // namespace conform

@@ -1,0 +1,146 @@
+#include "conform/registration/icp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "conform/core/error.h"
+#include "conform/registration/downsample.h"
+#include "icp_step.h"
+#include "pairs.h"
+#include "plane_matrix.h"
+
+namespace conform {
+
+namespace {
+
+using detail::Pair;
+
+// The subset stage of multi-resolution ICP stops at 100 times the tolerances: its optimum differs from the full
+// set's by about that, and the full set takes the last steps.
+constexpr double kCoarseToleranceScale = 100.0;
+
+// What one step saw, at the pose it started from.
+struct StepFigures {
+  std::vector<std::size_t> inliers;
+  std::vector<double> weights;
+  double kernel_scale_mm = 0.0;
+  PlaneNormalMatrix plane;
+  DegeneracyReport degeneracy;
+};
+
+StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options) {
+  StepFigures f;
+  f.inliers = detail::select_inliers(pairs, options.overlap);
+  f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm);
+  f.plane = detail::plane_normal_matrix_of(
+      f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
+      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; });
+  f.degeneracy = analyze_degeneracy(f.plane, options.degeneracy_threshold, options.free_dof);
+  return f;
+}
+
+void record(const std::vector<Pair>& pairs, StepFigures&& f, std::size_t scan_size, IcpResult& result) {
+  result.rms_mm = detail::inlier_rms(pairs, f.inliers);
+  result.inliers = f.inliers.size();
+  result.inlier_fraction = static_cast<double>(f.inliers.size()) / static_cast<double>(scan_size);
+  result.kernel_scale_mm = f.kernel_scale_mm;
+  result.degeneracy = std::move(f.degeneracy);
+}
+
+void check_input(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                 const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("ICP options: " + why);
+  if (scan.empty()) throw Error("ICP: the scan has no points");
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan[i].allFinite()) throw Error("ICP: scan point " + std::to_string(i) + " is not finite; clean it first");
+  }
+  if (!T_ref_scan_init.matrix().allFinite()) throw Error("ICP: the initial transform is not finite");
+  if (options.method == IcpMethod::kPointToSurface) reference.surface();  // throws, naming the problem
+}
+
+// Steps from result.T_ref_scan on `points` until a step moves less than the tolerances times tolerance_scale
+// (converged) or result.iterations reaches max_iterations; stops with kTooFewCorrespondences when too few pairs are
+// left. `result` keeps the figures of the last pairs found (at the pose the last step started from).
+void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& reference, const IcpOptions& options,
+             const detail::PairRules& rules, double tolerance_scale, int max_iterations, std::vector<Pair>& pairs,
+             IcpResult& result) {
+  const bool point_to_point = options.method == IcpMethod::kPointToPoint;
+  while (result.iterations < max_iterations) {
+    report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
+    detail::find_pairs(points, result.T_ref_scan, reference, rules, pairs);
+    StepFigures f = evaluate(pairs, options);
+    if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) {
+      result.termination = IcpTermination::kTooFewCorrespondences;
+      record(pairs, std::move(f), points.size(), result);
+      return;
+    }
+    const bool frozen = options.freeze_degenerate && f.degeneracy.degenerate();
+    Eigen::Isometry3d delta;
+    if (point_to_point && options.free_dof.all() && !frozen) {
+      delta = detail::horn_step(pairs, f.inliers, f.weights);
+    } else {
+      const Eigen::MatrixXd basis = detail::allowed_basis(options.free_dof, f.degeneracy, options.freeze_degenerate);
+      delta = detail::gauss_newton_step(pairs, f.inliers, f.weights, options.method, f.plane.centre,
+                                        f.plane.length_scale_mm, basis);
+    }
+    const Eigen::Vector3d centre = f.plane.centre;
+    record(pairs, std::move(f), points.size(), result);
+    result.T_ref_scan = delta * result.T_ref_scan;
+    ++result.iterations;
+    result.last_rotation_rad = rotation_angle(delta);
+    result.last_translation_mm = (delta * centre - centre).norm();
+    if (result.last_rotation_rad <= tolerance_scale * options.rotation_tolerance_rad &&
+        result.last_translation_mm <= tolerance_scale * options.translation_tolerance_mm) {
+      result.converged = true;
+      result.termination = IcpTermination::kConverged;
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+double rotation_angle(const Eigen::Isometry3d& T) {
+  // atan2 of |sin| and cos from the rotation's skew part and trace: accurate near 0 and near pi alike.
+  const Eigen::Matrix3d R = T.linear();
+  const Eigen::Vector3d s(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));
+  return std::atan2(0.5 * s.norm(), 0.5 * (R.trace() - 1.0));
+}
+
+IcpResult icp(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+              const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options) {
+  check_input(scan, reference, T_ref_scan_init, options);
+  detail::PairRules rules;
+  rules.method = options.method;
+  rules.max_distance_mm = options.max_correspondence_distance_mm;
+  IcpResult result;
+  result.T_ref_scan = T_ref_scan_init;
+  std::vector<Pair> pairs;
+  if (options.coarse_points > 0 && scan.size() > 2 * options.coarse_points) {
+    // Multi-resolution: the big steps on an even subset, the last ones (and the tolerances) on every point.
+    // At most half the iterations, so that the full set always has its share.
+    iterate(stride_downsample(scan, options.coarse_points), reference, options, rules, kCoarseToleranceScale,
+            std::max(1, options.max_iterations / 2), pairs, result);
+    result.converged = false;
+    result.termination = IcpTermination::kFailure;  // the full set decides, whatever the subset found
+  }
+  iterate(scan, reference, options, rules, 1.0, options.max_iterations, pairs, result);
+  if (result.termination == IcpTermination::kFailure) {
+    // Out of iterations: the figures at the final pose, which may be far from where the last step started. (When
+    // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
+    result.termination = IcpTermination::kMaxIterations;
+    detail::find_pairs(scan, result.T_ref_scan, reference, rules, pairs);
+    record(pairs, evaluate(pairs, options), scan.size(), result);
+  }
+  if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {
+    result.converged = false;
+    result.termination = IcpTermination::kInsufficientOverlap;
+  }
+  report(options.progress, "icp", 1.0);
+  return result;
+}
+
+}  // namespace conform

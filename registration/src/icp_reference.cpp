@@ -1,0 +1,81 @@
+#include "conform/registration/icp_reference.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/normals.h"
+
+namespace conform {
+
+namespace {
+
+constexpr int kNormalNeighbours = 16;
+
+// PCA normals of a cloud without faces, turned away from its centroid: the sign does not matter to point-to-plane
+// distances, but a consistent one keeps features (FPFH) comparable between scan and reference.
+std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh) {
+  Cloud cloud = to_cloud(mesh);
+  NormalOptions options;
+  options.k = kNormalNeighbours;
+  options.viewpoint = centroid(mesh);
+  const pcl::PointCloud<pcl::Normal> normals = estimate_normals(cloud, options);
+  std::vector<Eigen::Vector3d> out(normals.size());
+  for (std::size_t i = 0; i < normals.size(); ++i) out[i] = -normals[i].getNormalVector3fMap().cast<double>();
+  return out;
+}
+
+}  // namespace
+
+IcpReference::IcpReference(const Mesh& reference) { build(reference); }
+IcpReference::IcpReference(const Cloud& reference) {
+  check_consistent(reference, "ICP reference");
+  build(to_mesh(reference));
+}
+IcpReference::~IcpReference() = default;
+IcpReference::IcpReference(IcpReference&&) noexcept = default;
+IcpReference& IcpReference::operator=(IcpReference&&) noexcept = default;
+
+void IcpReference::build(Mesh mesh) {
+  check_consistent(mesh, "ICP reference");
+  if (mesh.vertices.size() < 3) {
+    throw Error("ICP reference: " + std::to_string(mesh.vertices.size()) + " points; at least 3 are needed");
+  }
+  if (count_non_finite(mesh) > 0) throw Error("ICP reference: has NaN or infinite points; clean it first");
+  if (mesh.has_normals()) {
+    normals_ = std::move(mesh.normals);
+    for (Eigen::Vector3d& n : normals_) {
+      const double length = n.norm();
+      n = length > 0.0 && std::isfinite(length) ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+    }
+  } else if (mesh.has_faces()) {
+    // Area-weighted face normals rather than PCA: a CAD mesh's few large triangles would put a whole face (and its
+    // neighbours) into 16 neighbours. Isolated vertices get a zero normal and so add nothing to a plane step.
+    normals_ = vertex_normals_from_faces(mesh);
+  } else {
+    normals_ = cloud_normals(mesh);
+  }
+  tree_ = std::make_unique<KdTree>(mesh.vertices);
+  points_ = std::move(mesh.vertices);
+  faces_ = std::move(mesh.faces);
+}
+
+const TriangleIndex& IcpReference::surface() const {
+  if (faces_.empty()) {
+    throw Error(
+        "point-to-surface ICP needs a reference mesh with faces; this reference is a point cloud (use "
+        "point-to-plane)");
+  }
+  // Only point-to-surface needs it, and building it costs more than the kd-tree.
+  std::call_once(*surface_once_, [this] {
+    Mesh mesh;
+    mesh.vertices = points_;
+    mesh.faces = faces_;
+    surface_ = std::make_unique<TriangleIndex>(mesh);
+  });
+  return *surface_;
+}
+
+}  // namespace conform

@@ -1,0 +1,117 @@
+#include "pairs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace conform::detail {
+
+namespace {
+
+// A parallel loop costs a team's start and a barrier, and libgomp's idle threads spin afterwards; below this many
+// points one thread is faster, and on a loaded machine much faster.
+constexpr std::ptrdiff_t kSerialBelow = 16384;
+constexpr int kChunk = 512;
+
+// Nearest reference point: the tree searches in float, the distance is then taken in double.
+void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm, Pair& pair) {
+  const Eigen::Vector3f qf = q.cast<float>();
+  if (!qf.allFinite()) return;  // beyond float range: nothing of the reference can be near
+  const int j = reference.tree().nearest(qf);
+  if (j < 0) return;
+  const auto index = static_cast<std::size_t>(j);
+  pair.target = reference.points()[index];
+  pair.normal = reference.normals()[index];
+  pair.distance = (q - pair.target).norm();
+  pair.found = pair.distance <= max_distance_mm;
+}
+
+void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm,
+                           Pair& pair) {
+  const SurfacePoint s = reference.surface().closest(q, max_distance_mm);
+  if (!s.found()) return;
+  pair.target = s.point;
+  pair.normal = reference.surface().normal_at(s);
+  pair.distance = std::sqrt(s.sq_distance);
+  pair.found = pair.distance <= max_distance_mm && pair.normal.allFinite();
+}
+
+}  // namespace
+
+void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3d& T_ref_scan,
+                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs) {
+  const IcpMethod method = rules.method;
+  const double max_distance_mm = rules.max_distance_mm;
+  pairs.resize(scan.size());
+  const auto n = static_cast<std::ptrdiff_t>(scan.size());
+#pragma omp parallel for schedule(dynamic, kChunk) if (n > kSerialBelow)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    Pair& pair = pairs[static_cast<std::size_t>(i)];
+    pair = Pair{};
+    pair.q = T_ref_scan * scan[static_cast<std::size_t>(i)];
+    if (!pair.q.allFinite()) continue;  // overflow: nothing to pair it with (and the searches would throw)
+    if (method == IcpMethod::kPointToSurface) {
+      nearest_surface_point(reference, pair.q, max_distance_mm, pair);
+    } else {
+      nearest_point(reference, pair.q, max_distance_mm, pair);
+    }
+    if (!pair.found) continue;
+    pair.residual = method == IcpMethod::kPointToPoint ? pair.distance : pair.normal.dot(pair.q - pair.target);
+  }
+}
+
+std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap) {
+  std::vector<double> distances;
+  distances.reserve(pairs.size());
+  for (const Pair& p : pairs) {
+    if (p.found) distances.push_back(p.distance);
+  }
+  // Chetverikov et al. 2002: keep the ceil(overlap N) smallest distances of the N scan points.
+  const auto keep = static_cast<std::size_t>(std::ceil(overlap * static_cast<double>(pairs.size())));
+  double limit = std::numeric_limits<double>::infinity();
+  if (keep == 0) return {};
+  if (distances.size() > keep) {
+    std::nth_element(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(keep - 1), distances.end());
+    limit = distances[keep - 1];
+  }
+  std::vector<std::size_t> inliers;
+  inliers.reserve(std::min(keep, distances.size()));
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (pairs[i].found && pairs[i].distance <= limit) inliers.push_back(i);
+  }
+  return inliers;
+}
+
+std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
+                                   RobustKernel kernel, double min_scale_mm, double* scale_mm) {
+  std::vector<double> weights(inliers.size(), 1.0);
+  *scale_mm = 0.0;
+  if (kernel == RobustKernel::kNone || inliers.empty()) return weights;
+  std::vector<double> magnitudes(inliers.size());
+  for (std::size_t k = 0; k < inliers.size(); ++k) magnitudes[k] = std::abs(pairs[inliers[k]].residual);
+  const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
+  std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+  // 1.4826 median |r|: the standard deviation of Gaussian residuals, robust to up to half of them being outliers.
+  const double scale = std::max(1.4826 * *middle, min_scale_mm);
+  *scale_mm = scale;
+  const double huber = 1.345 * scale, tukey = 4.685 * scale;
+  for (std::size_t k = 0; k < inliers.size(); ++k) {
+    const double r = std::abs(pairs[inliers[k]].residual);
+    if (kernel == RobustKernel::kHuber) {
+      weights[k] = r <= huber ? 1.0 : huber / r;
+    } else {
+      const double u = r / tukey;
+      weights[k] = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+    }
+  }
+  return weights;
+}
+
+double inlier_rms(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers) {
+  if (inliers.empty()) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i : inliers) sum += pairs[i].residual * pairs[i].residual;
+  return std::sqrt(sum / static_cast<double>(inliers.size()));
+}
+
+}  // namespace conform::detail

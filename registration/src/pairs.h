@@ -1,0 +1,45 @@
+#pragma once
+// One ICP step's correspondences and the choice of the pairs that take part: the distance gate, trimming to the
+// overlap fraction, and the robust kernel's weights.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "conform/registration/icp_options.h"
+#include "conform/registration/icp_reference.h"
+
+namespace conform::detail {
+
+struct Pair {
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();       // the scan point in the reference frame
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();  // its reference point (or surface point)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the reference's unit normal there
+  double distance = 0.0;                             // |q - target|, mm
+  double residual = 0.0;                             // the method's: distance, or n . (q - target)
+  bool found = false;
+};
+
+// How pairs are made and which are kept.
+struct PairRules {
+  IcpMethod method = IcpMethod::kPointToPlane;
+  double max_distance_mm = 0.0;
+};
+
+// Pairs for every scan point at T_ref_scan (found = false beyond the distance). Parallel, order-independent.
+void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3d& T_ref_scan,
+                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs);
+
+// The found pairs kept after trimming to `overlap` x scan size (smallest distances first), ascending by index.
+std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap);
+
+// Robust weights of the inliers' residuals and the scale used (0 for kNone): scale = max(1.4826 median |r|, floor).
+std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
+                                   RobustKernel kernel, double min_scale_mm, double* scale_mm);
+
+// RMS of the inliers' residuals (unweighted), mm.
+double inlier_rms(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers);
+
+}  // namespace conform::detail

@@ -1,0 +1,52 @@
+#pragma once
+// The normalised point-to-plane normal matrix (degeneracy.h) over any sequence of (point, normal) pairs.
+
+#include <cmath>
+#include <cstddef>
+
+#include "block_sum.h"
+#include "conform/registration/degeneracy.h"
+
+namespace conform::detail {
+
+struct PlaneSums {
+  Matrix6d H = Matrix6d::Zero();
+  PlaneSums& operator+=(const PlaneSums& o) {
+    H += o.H;
+    return *this;
+  }
+};
+
+struct PointSums {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double sq = 0.0;
+  PointSums& operator+=(const PointSums& o) {
+    sum += o.sum;
+    sq += o.sq;
+    return *this;
+  }
+};
+
+// point(i), normal(i) for i in [0, n): references to Eigen::Vector3d.
+template <typename PointAt, typename NormalAt>
+PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalAt&& normal) {
+  PlaneNormalMatrix m;
+  m.count = n;
+  if (n == 0) return m;
+  const double count = static_cast<double>(n);
+  m.centre = block_sum(n, PointSums{}, [&](std::size_t i, PointSums& a) { a.sum += point(i); }).sum / count;
+  const double sq =
+      block_sum(n, PointSums{}, [&](std::size_t i, PointSums& a) { a.sq += (point(i) - m.centre).squaredNorm(); }).sq;
+  m.length_scale_mm = std::sqrt(sq / count);
+  const double inv_length = m.length_scale_mm > 0.0 ? 1.0 / m.length_scale_mm : 0.0;
+  const PlaneSums sums = block_sum(n, PlaneSums{}, [&](std::size_t i, PlaneSums& a) {
+    Vector6d J;
+    J.head<3>() = (point(i) - m.centre).cross(normal(i)) * inv_length;
+    J.tail<3>() = normal(i);
+    a.H.noalias() += J * J.transpose();
+  });
+  m.H = sums.H / count;
+  return m;
+}
+
+}  // namespace conform::detail

@@ -1,0 +1,114 @@
+// The coarse building blocks: principal-axes starts (one of them exact on a noise-free copy), multi-start ranking
+// and its ambiguity flag on a symmetric part, point pairs with per-pair residuals, downsampling.
+
+#include <gtest/gtest.h>
+
+#include "conform/core/error.h"
+#include "conform/registration/coarse_pca.h"
+#include "conform/registration/downsample.h"
+#include "conform/registration/multi_start.h"
+#include "conform/registration/point_pairs.h"
+#include "test_parts.h"
+
+namespace conform {
+namespace {
+
+using test::kDeg;
+
+// Points on the surface of an axis-aligned box (a grid on each face).
+std::vector<Eigen::Vector3d> box_surface(const Eigen::Vector3d& size, double step) {
+  std::vector<Eigen::Vector3d> out;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (double side : {-0.5, 0.5}) {
+      for (double s = -0.5 * size(u); s <= 0.5 * size(u) + 1e-9; s += step) {
+        for (double t = -0.5 * size(v); t <= 0.5 * size(v) + 1e-9; t += step) {
+          Eigen::Vector3d p;
+          p(axis) = side * size(axis);
+          p(u) = s;
+          p(v) = t;
+          out.push_back(p);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+TEST(CoarsePca, OneOfTheFourStartsIsExactOnACopy) {
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  Random random(3);
+  const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 500.0, part.centre);
+  const std::vector<Eigen::Vector3d> scan = test::transformed_points(part.reference.vertices, truth.inverse());
+  const std::vector<CoarseStart> starts = pca_starts(scan, part.reference.vertices);
+  ASSERT_EQ(starts.size(), 4u);
+  double best = 180.0;
+  for (const CoarseStart& s : starts) best = std::min(best, test::rotation_error_deg(s.T_ref_scan, truth));
+  EXPECT_LT(best, 1e-9);
+  // Every start maps the scan's centroid onto the reference's.
+  for (const CoarseStart& s : starts) {
+    EXPECT_LT((s.T_ref_scan * test::mean_point(scan) - test::mean_point(part.reference.vertices)).norm(), 1e-9);
+  }
+}
+
+TEST(MultiStart, PicksTheRightStartAndFlagsASymmetricPart) {
+  // The box part has no symmetry: one clear winner.
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  const IcpReference reference(part.reference);
+  Random random(5);
+  const Eigen::Isometry3d truth = test::random_motion(random, 2.0, 100.0, part.centre);
+  std::vector<Eigen::Vector3d> scan = test::transformed_points(part.scan, truth.inverse());
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 20.0;
+  MultiStartResult r = rank_starts(scan, reference, pca_starts(scan, part.reference.vertices), options);
+  ASSERT_GE(r.best, 0);
+  EXPECT_FALSE(r.ambiguous);
+  EXPECT_LT(test::rotation_error_deg(r.starts[static_cast<std::size_t>(r.best)].T_probe, truth), 0.5);
+
+  // A plain 120 x 80 x 40 box: turned 180 degrees about any axis it is the same, so starts tie.
+  const std::vector<Eigen::Vector3d> box = box_surface({120, 80, 40}, 4.0);
+  Mesh box_mesh;
+  box_mesh.vertices = box;
+  const IcpReference box_reference(box_mesh);
+  scan = test::transformed_points(box, truth.inverse());
+  r = rank_starts(scan, box_reference, pca_starts(scan, box), options);
+  EXPECT_TRUE(r.ambiguous);
+  ASSERT_GE(r.runner_up, 0);
+  EXPECT_NEAR(r.starts[static_cast<std::size_t>(r.runner_up)].score_mm,
+              r.starts[static_cast<std::size_t>(r.best)].score_mm, 0.01);
+}
+
+TEST(PointPairs, ResidualsPointAtTheBadPair) {
+  Random random(7);
+  const Eigen::Isometry3d truth = test::random_motion(random, 1.0, 200.0, Eigen::Vector3d::Zero());
+  std::vector<PointPair> pairs;
+  for (const Eigen::Vector3d& s : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(100, 0, 0), Eigen::Vector3d(0, 80, 0),
+                                   Eigen::Vector3d(0, 0, 60), Eigen::Vector3d(50, 50, 50)}) {
+    pairs.push_back({s, truth * s});
+  }
+  PointPairsResult r = align_point_pairs(pairs);
+  EXPECT_LT(test::rotation_error_deg(r.T_ref_scan, truth), 1e-9);
+  EXPECT_LT(r.max_residual_mm, 1e-9);
+  pairs[4].reference += Eigen::Vector3d(3.0, 0.0, 0.0);  // a mistyped marker
+  r = align_point_pairs(pairs);
+  EXPECT_EQ(r.worst_pair, 4u);
+  EXPECT_GT(r.residuals_mm[4], 2.0);
+  pairs.resize(2);
+  EXPECT_THROW(align_point_pairs(pairs), Error);
+  EXPECT_THROW(align_point_pairs({{{0, 0, 0}, {0, 0, 0}}, {{1, 1, 1}, {1, 1, 1}}, {{2, 2, 2}, {2, 2, 2}}}), Error);
+}
+
+TEST(Downsample, VoxelCentroidsAndStride) {
+  const std::vector<Eigen::Vector3d> points{{0.1, 0.1, 0.1}, {0.3, 0.3, 0.3}, {1.5, 0.0, 0.0}, {-0.5, 0.0, 0.0}};
+  const std::vector<Eigen::Vector3d> v = voxel_downsample(points, 1.0);
+  ASSERT_EQ(v.size(), 3u);  // voxels (-1,0,0), (0,0,0), (1,0,0), in that order
+  EXPECT_EQ(v[0], Eigen::Vector3d(-0.5, 0.0, 0.0));
+  EXPECT_LT((v[1] - Eigen::Vector3d(0.2, 0.2, 0.2)).norm(), 1e-15);
+  EXPECT_EQ(v[2], Eigen::Vector3d(1.5, 0.0, 0.0));
+  EXPECT_THROW(voxel_downsample(points, 0.0), Error);
+  EXPECT_EQ(stride_downsample(points, 2), (std::vector<Eigen::Vector3d>{points[0], points[2]}));
+  EXPECT_EQ(stride_downsample(points, 10).size(), 4u);
+}
+
+}  // namespace
+}  // namespace conform
