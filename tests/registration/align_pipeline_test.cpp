@@ -69,7 +69,8 @@ TEST(AlignPipeline, RecoversTheRealSmallGicpPairInMetres) {
   EXPECT_NE(warnings.find("source.ply: 5106 duplicate points merged"), std::string::npos) << warnings;
 }
 
-TEST(AlignPipeline, EveryInitPlacesTheBoxAndWritesBothOutputs) {
+// Places the box part (25 degrees, 15% of its size off) with `init`, then checks the fit and both output files.
+void place_box(AlignInit init) {
   test::TempDir dir;
   const Files f = write_part(dir, test::PartKind::kBox, 25.0, 0.15);
   // Four marker pairs: box corners and the boss top, in both frames.
@@ -83,33 +84,37 @@ TEST(AlignPipeline, EveryInitPlacesTheBoxAndWritesBothOutputs) {
     pairs += line;
   }
   test::write_bytes(dir.file("pairs.txt"), "# scan xyz, reference xyz\n\n" + pairs);
-  for (AlignInit init : {AlignInit::kPca, AlignInit::kFpfh, AlignInit::kPairs}) {
-    AlignOptions options;
-    options.scan_path = f.scan;
-    options.reference_path = f.reference;
-    options.init = init;
-    options.pairs_path = dir.file("pairs.txt");
-    options.out_transform_path = dir.file(std::string("T_") + to_string(init) + ".txt");
-    options.out_aligned_path = dir.file(std::string("aligned_") + to_string(init) + ".ply");
-    const AlignResult r = run_align(options);
-    SCOPED_TRACE(to_string(init));
-    EXPECT_TRUE(r.icp.converged);
-    EXPECT_EQ(r.method, IcpMethod::kPointToSurface);  // automatic for a mesh reference
-    EXPECT_LT(test::rotation_error_deg(r.icp.T_ref_scan, f.truth), 0.01);
-    EXPECT_LT(test::translation_error_mm(r.icp.T_ref_scan, f.truth), 0.01);
-    EXPECT_EQ(read_transform(options.out_transform_path).matrix(), r.icp.T_ref_scan.matrix());
-    const Mesh aligned = read_geometry(options.out_aligned_path);
-    ASSERT_EQ(aligned.vertices.size(), r.scan_points);
-    if (init == AlignInit::kPairs) {
-      ASSERT_EQ(r.pairs.residuals_mm.size(), 4u);
-      EXPECT_LT(r.pairs.max_residual_mm, 1e-6);
-      EXPECT_EQ(r.start, "pairs");
-    } else {
-      EXPECT_FALSE(r.coarse.ranking.starts.empty());
-      EXPECT_FALSE(r.coarse.ranking.ambiguous);
-    }
+  AlignOptions options;
+  options.scan_path = f.scan;
+  options.reference_path = f.reference;
+  options.init = init;
+  options.pairs_path = dir.file("pairs.txt");
+  options.out_transform_path = dir.file("T.txt");
+  options.out_aligned_path = dir.file("aligned.ply");
+  const AlignResult r = run_align(options);
+  EXPECT_TRUE(r.icp.converged);
+  EXPECT_EQ(r.method, IcpMethod::kPointToSurface);  // automatic for a mesh reference
+  EXPECT_LT(test::rotation_error_deg(r.icp.T_ref_scan, f.truth), 0.01);
+  EXPECT_LT(test::translation_error_mm(r.icp.T_ref_scan, f.truth), 0.01);
+  EXPECT_EQ(read_transform(options.out_transform_path).matrix(), r.icp.T_ref_scan.matrix());
+  const Mesh aligned = read_geometry(options.out_aligned_path);
+  ASSERT_EQ(aligned.vertices.size(), r.scan_points);
+  if (init == AlignInit::kPairs) {
+    ASSERT_EQ(r.pairs.residuals_mm.size(), 4u);
+    EXPECT_LT(r.pairs.max_residual_mm, 1e-6);
+    EXPECT_EQ(r.start, "pairs");
+  } else {
+    EXPECT_FALSE(r.coarse.ranking.starts.empty());
+    EXPECT_FALSE(r.coarse.ranking.ambiguous);
   }
 }
+
+// FPFH in tests of its own: under AddressSanitizer Eigen allocates with its own aligned malloc, PCL's (uninstrumented)
+// libraries with plain malloc, so PCL's feature objects built here are freed with the wrong one. Sanitizer runs
+// leave them out with --gtest_filter=-*Fpfh*.
+TEST(AlignPipeline, PcaPlacesTheBoxAndWritesBothOutputs) { place_box(AlignInit::kPca); }
+TEST(AlignPipeline, FpfhPlacesTheBoxAndWritesBothOutputs) { place_box(AlignInit::kFpfh); }
+TEST(AlignPipeline, PairsPlaceTheBoxAndWriteBothOutputs) { place_box(AlignInit::kPairs); }
 
 TEST(AlignPipeline, NoOverlapDoesNotConvergeAndWritesNothing) {
   test::TempDir dir;
