@@ -30,24 +30,8 @@
 
 namespace {
 
+using conform::bench::best_cpu_seconds;
 using conform::bench::best_seconds;
-
-// Both fits run on one thread; on a machine shared with other jobs their CPU time is steadier than wall-clock time.
-template <typename Fn>
-double best_cpu_seconds(int repeats, Fn&& fn) {
-  const auto now = [] {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-  };
-  double best = INFINITY;
-  for (int i = 0; i < repeats; ++i) {
-    const double start = now();
-    fn();
-    best = std::min(best, now() - start);
-  }
-  return best;
-}
 
 constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;

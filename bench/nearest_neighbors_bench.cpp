@@ -28,26 +28,9 @@
 
 namespace {
 
+using conform::bench::best_cpu_seconds;
 using conform::bench::best_seconds;
 using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
-
-// The search table is timed in CPU time of this thread, best of kRepeats: the machine it runs on is shared, and
-// wall-clock times of a single-threaded loop varied by 2x from run to run with other jobs taking time slices.
-template <typename Fn>
-double best_cpu_seconds(int repeats, Fn&& fn) {
-  const auto now = [] {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-  };
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < repeats; ++i) {
-    const double start = now();
-    fn();
-    best = std::min(best, now() - start);
-  }
-  return best;
-}
 
 constexpr int kRepeats = 3;
 constexpr std::size_t kQueries = 100000;

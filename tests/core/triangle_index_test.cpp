@@ -11,12 +11,12 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/error.h"
+#include "test_meshes.h"
 
 namespace conform {
 namespace {
 
 using V = Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
 
 // ---- an independent reference: projection onto the plane if it falls inside, else the nearest of the edges ----
 
@@ -136,28 +136,7 @@ Mesh box_mesh(int n, double size) {
 
 // A latitude-longitude sphere of radius r centred at the origin (convex; poles shared by a fan of faces).
 Mesh uv_sphere(int rings, int segments, double r) {
-  Mesh m;
-  m.vertices.emplace_back(0, 0, r);
-  for (int i = 1; i < rings; ++i) {
-    const double polar = kPi * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double az = 2 * kPi * j / segments;
-      m.vertices.emplace_back(r * std::sin(polar) * std::cos(az), r * std::sin(polar) * std::sin(az),
-                              r * std::cos(polar));
-    }
-  }
-  m.vertices.emplace_back(0, 0, -r);
-  const auto south = static_cast<std::int32_t>(m.vertices.size() - 1);
-  auto ring = [&](int i, int j) { return static_cast<std::int32_t>(1 + (i - 1) * segments + (j % segments)); };
-  for (int j = 0; j < segments; ++j) {
-    m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
-    m.faces.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    for (int i = 1; i + 1 < rings; ++i) {
-      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-  }
-  return m;
+  return test::lat_long_sphere(rings, segments, [r](double, double) { return r; });
 }
 
 double signed_distance(const TriangleIndex& index, const V& p) {

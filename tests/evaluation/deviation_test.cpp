@@ -16,39 +16,17 @@
 
 #include "conform/core/error.h"
 #include "conform/evaluation/statistics.h"
+#include "test_meshes.h"
 
 namespace conform {
 namespace {
 
 using V = Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
 
 // A closed, non-convex "bumpy sphere": a latitude-longitude sphere whose radius varies with the direction.
 Mesh bumpy_sphere(int rings, int segments) {
-  Mesh m;
-  const auto radius = [](double polar, double az) { return 10.0 + 2.0 * std::sin(3 * az) * std::sin(2 * polar); };
-  m.vertices.emplace_back(0, 0, radius(0, 0));
-  for (int i = 1; i < rings; ++i) {
-    const double polar = kPi * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double az = 2 * kPi * j / segments;
-      const double r = radius(polar, az);
-      m.vertices.emplace_back(r * std::sin(polar) * std::cos(az), r * std::sin(polar) * std::sin(az),
-                              r * std::cos(polar));
-    }
-  }
-  m.vertices.emplace_back(0, 0, -radius(kPi, 0));
-  const auto south = static_cast<std::int32_t>(m.vertices.size() - 1);
-  auto ring = [&](int i, int j) { return static_cast<std::int32_t>(1 + (i - 1) * segments + (j % segments)); };
-  for (int j = 0; j < segments; ++j) {
-    m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
-    m.faces.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    for (int i = 1; i + 1 < rings; ++i) {
-      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-  }
-  return m;
+  return test::lat_long_sphere(
+      rings, segments, [](double polar, double az) { return 10.0 + 2.0 * std::sin(3 * az) * std::sin(2 * polar); });
 }
 
 double segment_distance(const V& p, const V& u, const V& v) {
