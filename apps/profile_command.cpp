@@ -1,0 +1,179 @@
+// `conform profile`: compensate the cutting and marking coordinates of a deformed ship profile from its measured
+// edge (Chen et al., LNG profiles; beyond the paper: spline edge model chosen by residual, local web direction from a
+// second edge, per-feature comparison with the cubic model).
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/profile.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+// "0,0,1" -> a finite non-zero vector, or conform::Error naming the flag.
+Eigen::Vector3d parse_web_normal(const std::string& text) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
+      throw Error("--web-normal " + text + ": '" + item + "' is not a number; expected x,y,z");
+    }
+    values.push_back(v);
+  }
+  if (values.size() != 3) throw Error("--web-normal " + text + ": expected 3 comma-separated numbers, x,y,z");
+  const Eigen::Vector3d z(values[0], values[1], values[2]);
+  if (!(z.norm() > 0.0)) throw Error("--web-normal " + text + ": the web normal must not be zero");
+  return z;
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+nlohmann::json residual_json(const ProfileEdgeResidual& r) {
+  if (!r.fitted) return nullptr;
+  return {{"rms_mm", r.rms_mm}, {"max_mm", r.max_mm}, {"max_index", r.max_index}};
+}
+
+class ProfileCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.add_option("--edge", edge_,
+                 "Measured edge points, CSV x_mm,y_mm,z_mm in measuring order (origin first); required")
+        ->required();
+    c.add_option("--features", features_,
+                 "Designed features, .csv (id,type,tx_mm,ty_mm,radius_mm) or .json (docs/profile.md); required")
+        ->required();
+    c.add_option("--model", model_,
+                 "Edge model: auto (cubic unless a spline fits far better), cubic, spline; default auto")
+        ->check(CLI::IsMember({"auto", "cubic", "spline"}));
+    CLI::Option* web =
+        c.add_option("--web-normal", web_normal_,
+                     "Web normal Z, x,y,z (any length); default: the plane of the edge points, towards +z");
+    CLI::Option* second = c.add_option("--second-edge", second_edge_,
+                                       "The profile's other edge (+Tx side), CSV x_mm,y_mm,z_mm: local web direction "
+                                       "for twist; default none");
+    web->excludes(second);
+    c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm; default 0.05");
+    c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm; default 50");
+    c.add_option("--noise", noise_mm_,
+                 "Edge sensor noise sigma per coordinate, mm, for the spline; default 0 (estimate)");
+    c.add_option("--out", out_, "CSV to write: id,i,x_mm,y_mm,z_mm (circle centre i = -1); default none");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  int run() override {
+    ProfileJobOptions options;
+    options.edge_path = edge_;
+    options.features_path = features_;
+    options.second_edge_path = second_edge_;
+    options.out_path = out_;
+    ProfileCompensationOptions& c = options.compensation;
+    parse_profile_edge_model(model_, &c.edge.model);
+    if (!web_normal_.empty()) c.web_normal = parse_web_normal(web_normal_);
+    c.sampling.chord_tolerance_mm = chord_tolerance_mm_;
+    c.edge.points.max_gap_mm = max_gap_mm_;
+    c.edge.noise_mm = noise_mm_;
+    const ProfileJobResult result = run_profile(options);
+    if (json_) {
+      print_json(to_json(result));
+    } else {
+      print_text(result);
+    }
+    if (!result.compensation.ok) {
+      warn("profile: " + result.compensation.termination + "; no file written");
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  nlohmann::json to_json(const ProfileJobResult& job) const {
+    const ProfileCompensationResult& r = job.compensation;
+    nlohmann::json features = nlohmann::json::array();
+    for (const ProfileFeatureResult& f : r.features) {
+      features.push_back({{"id", f.id},
+                          {"type", to_string(f.type)},
+                          {"points", f.mapped.size()},
+                          {"centre_mm", f.has_centre ? vector_json(f.centre) : nlohmann::json(nullptr)},
+                          {"cubic_deviation_max_mm", f.cubic_deviation_max_mm}});
+    }
+    return {{"edge_rms_mm", r.edge.rms_mm},
+            {"edge_max_mm", r.edge.max_mm},
+            {"model", to_string(r.edge.model)},
+            {"model_selection", r.edge.selection},
+            {"cubic_fit", residual_json(r.edge.cubic_fit)},
+            {"spline_fit", residual_json(r.edge.spline_fit)},
+            {"edge_points", job.edge_points},
+            {"edge_length_mm", r.edge.curve.length_mm()},
+            {"edge_spacing_median_mm", r.edge.points.median_spacing_mm},
+            {"edge_gap_max_mm", r.edge.points.max_gap_mm},
+            {"noise_mm", r.edge.noise_mm},
+            {"web", r.local_web ? "second edge" : (web_normal_.empty() ? "fitted plane" : "given")},
+            {"web_normal", r.local_web ? nlohmann::json(nullptr) : vector_json(r.web_normal)},
+            {"second_edge_points", job.second_edge_points},
+            {"web_width_min_mm", r.local_web ? nlohmann::json(r.web_width_min_mm) : nlohmann::json(nullptr)},
+            {"web_width_max_mm", r.local_web ? nlohmann::json(r.web_width_max_mm) : nlohmann::json(nullptr)},
+            {"mapped_points", r.mapped_points},
+            {"arc_length_residual_max_mm", r.arc_length_residual_max_mm},
+            {"cubic_deviation_max_mm", r.cubic_deviation_max_mm},
+            {"ok", r.ok},
+            {"termination", r.termination},
+            {"features", features},
+            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
+  }
+
+  void print_text(const ProfileJobResult& job) const {
+    const ProfileCompensationResult& r = job.compensation;
+    const ProfileEdgeFit& e = r.edge;
+    std::printf("edge          %zu points, %.3f mm long, spacing median %.3f mm, largest gap %.3f mm, noise %.4f mm\n",
+                job.edge_points, e.curve.length_mm(), e.points.median_spacing_mm, e.points.max_gap_mm, e.noise_mm);
+    std::printf("cubic fit     RMS %.4f mm  max %.4f mm\n", e.cubic_fit.rms_mm, e.cubic_fit.max_mm);
+    if (e.spline_fit.fitted) {
+      std::printf("spline fit    RMS %.4f mm  max %.4f mm\n", e.spline_fit.rms_mm, e.spline_fit.max_mm);
+    }
+    std::printf("model         %s (%s)\n", to_string(e.model), e.selection.c_str());
+    if (r.local_web) {
+      std::printf("web           local, from the second edge (%zu points): width %.3f .. %.3f mm\n",
+                  job.second_edge_points, r.web_width_min_mm, r.web_width_max_mm);
+    } else {
+      std::printf("web normal    %.6f %.6f %.6f (%s)\n", r.web_normal.x(), r.web_normal.y(), r.web_normal.z(),
+                  web_normal_.empty() ? "fitted plane" : "given");
+    }
+    std::printf("mapped        %zu points, arc-length residual max %.2e mm\n", r.mapped_points,
+                r.arc_length_residual_max_mm);
+    for (const ProfileFeatureResult& f : r.features) {
+      std::printf("  %-10s %-8s %5zu pts", f.id.c_str(), to_string(f.type), f.mapped.size());
+      if (f.has_centre) std::printf("  centre %.3f %.3f %.3f", f.centre.x(), f.centre.y(), f.centre.z());
+      if (e.model != ProfileEdgeModel::kCubic) std::printf("  vs cubic %.3f mm", f.cubic_deviation_max_mm);
+      std::printf("\n");
+    }
+    std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
+  }
+
+  std::string edge_;
+  std::string features_;
+  std::string model_ = "auto";
+  std::string web_normal_;
+  std::string second_edge_;
+  double chord_tolerance_mm_ = 0.05;
+  double max_gap_mm_ = 50.0;
+  double noise_mm_ = 0.0;
+  std::string out_;
+  bool json_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(
+    ProfileCommand, "profile",
+    "Compensate cutting/marking coordinates of a deformed ship profile from its measured edge (Chen et al.)")
+
+}  // namespace conform::app

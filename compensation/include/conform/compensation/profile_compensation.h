@@ -1,0 +1,70 @@
+#pragma once
+// Profile compensation (Chen et al., "A 3D-compensating algorithm for LNG shipbuilding profiles robot cutting
+// system"): where each designed feature of a straight, flat profile must be cut on the deformed profile that the laser
+// sensor measured, so that it lands at its design position once the profile is straightened and flattened.
+//
+//   edge points -> checks (order, gaps, count) -> edge model (cubic, spline or auto by residual; profile_edge.h)
+//   -> web direction (global Z: given or the plane of the points; local: from a second edge; profile_map.h)
+//   -> each feature sampled at the chord tolerance and mapped, P' = C(t) + Tx V1(t) with s(t) = Ty (Eq. 4-7)
+//   -> per feature, the worst distance to where the cubic model alone would put the same points.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "conform/compensation/profile_edge.h"
+#include "conform/compensation/profile_features.h"
+#include "conform/compensation/profile_map.h"
+
+namespace conform {
+
+struct ProfileCompensationOptions {
+  ProfileEdgeFitOptions edge;                 // model, checks, noise (also used for the second edge)
+  ProfileSampleOptions sampling;              // chord tolerance of mapped outlines
+  std::optional<Eigen::Vector3d> web_normal;  // global Z; empty: the plane of the measured points
+  double arc_length_tolerance_mm = 1e-7;      // |s(t) - Ty| at every mapped point, mm (> 0)
+
+  bool IsValid(std::string* error) const;
+};
+
+struct ProfileFeatureResult {
+  std::string id;
+  ProfileFeatureType type = ProfileFeatureType::kPoint;
+  bool has_centre = false;  // circle, slot
+  Eigen::Vector2d designed_centre = Eigen::Vector2d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // mapped centre
+  std::vector<Eigen::Vector2d> designed;             // sampled outline (closed ones end on their first point)
+  std::vector<Eigen::Vector3d> mapped;               // where to cut or mark, mm
+  double cubic_deviation_max_mm = 0.0;  // worst |P' - P'_cubic| over the outline and centre; 0 when the model is cubic
+};
+
+struct ProfileCompensationResult {
+  bool ok = false;
+  std::string termination = "not run";
+  ProfileEdgeFit edge;
+  std::optional<ProfileEdgeFit> second_edge;
+  bool local_web = false;                                 // V1 from the second edge
+  Eigen::Vector3d web_normal = Eigen::Vector3d::UnitZ();  // global Z (given or fitted); unused when local
+  double web_flatness_ratio = 0.0;                        // of the fitted plane; 0 when given or local
+  double web_width_min_mm = 0.0;                          // local: measured web width over the mapped points
+  double web_width_max_mm = 0.0;
+  std::vector<ProfileFeatureResult> features;
+  std::size_t mapped_points = 0;
+  double arc_length_residual_max_mm = 0.0;  // max |s(t) - Ty| over every mapped point (Eq. 7)
+  double cubic_deviation_max_mm = 0.0;      // max over the features
+};
+
+// Throws conform::Error naming the source and the problem: invalid options, edge points that fail the checks
+// (profile_edge_points.h), a feature that fails ProfileFeature::validate or reaches Ty outside the measured edge
+// [0, length], an undetermined web normal. ok is false (with a termination) when an arc-length inversion did not
+// meet its tolerance.
+ProfileCompensationResult compensate_profile(const std::vector<Eigen::Vector3d>& edge_points,
+                                             const std::vector<ProfileFeature>& features,
+                                             const ProfileCompensationOptions& options,
+                                             const std::vector<Eigen::Vector3d>* second_edge_points = nullptr,
+                                             const std::string& edge_source = "edge points",
+                                             const std::string& second_edge_source = "second edge points");
+
+}  // namespace conform

@@ -1,0 +1,43 @@
+#pragma once
+// The measured edge points of a deformed profile, checked before any fit (Chen et al., LNG profiles): a laser profile
+// sensor walks along the edge, so the points come in measuring order, start at the profile's origin (Ty = 0) and are
+// spaced by the sensor's step, with an occasional dropout. A point out of order or a hole in the scan would silently
+// bend the edge curve; both are refused here with the index and the coordinates of the offending point.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace conform {
+
+struct ProfileEdgePointsOptions {
+  double max_gap_mm = 50.0;  // largest allowed distance between consecutive points, mm (> 0)
+  int min_points = 4;        // a cubic has 4 coefficients per coordinate: fewer points cannot determine it (>= 4)
+
+  bool IsValid(std::string* error) const;
+};
+
+struct ProfileEdgePointsCheck {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // the main direction of the points, from the first to the last
+  double chord_length_mm = 0.0;                     // sum of the distances between consecutive points
+  double median_spacing_mm = 0.0;
+  double max_gap_mm = 0.0;  // the largest distance between consecutive points
+  int max_gap_index = 0;    // the point (0-based) that ends that gap
+  double noise_mm = 0.0;    // per-coordinate noise estimated from second differences (robust, median based)
+};
+
+// Checks and describes the points. `source` names them in messages (a file name). Throws conform::Error when the
+// options are invalid, there are fewer than min_points points, a coordinate is not finite, a point does not lie
+// further along the main axis than the one before it (not in measuring order), or two consecutive points are further
+// apart than max_gap_mm; the message gives the point's index (0-based) and coordinates.
+ProfileEdgePointsCheck check_profile_edge_points(const std::vector<Eigen::Vector3d>& points,
+                                                 const ProfileEdgePointsOptions& options,
+                                                 const std::string& source = "edge points");
+
+// sigma per coordinate from the second differences P_{i-1} - 2 P_i + P_{i+1} of points sampled along a smooth curve:
+// each has covariance 6 sigma^2 I, so |d|^2 / (6 sigma^2) is chi-square with 3 degrees of freedom (median 2.366);
+// the median ignores the few triples that straddle a dropout. Zero for fewer than 3 points.
+double estimate_edge_noise_mm(const std::vector<Eigen::Vector3d>& points);
+
+}  // namespace conform
