@@ -1,0 +1,202 @@
+// `conform tube-joint`: cutting and welding paths for a tubular joint from a leg scan (outer surface, leg frame) and
+// a stub scan (inner surface, stub frame) — Lind & Ystgaard (2020), pipelines/tube_joint.h.
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/tube_joint.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+double radians(double deg) { return deg / 180.0 * kPi; }
+double degrees(double rad) { return rad / kPi * 180.0; }
+
+std::array<double, 4> parse_groove(const std::string& text) {
+  std::array<double, 4> values{};
+  std::stringstream in(text);
+  std::string item;
+  std::size_t count = 0;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (count >= 4 || item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
+      throw Error("--groove-deg " + text + ": expected 4 numbers toe,side,heel,side in degrees");
+    }
+    values[count++] = radians(v);
+  }
+  if (count != 4) throw Error("--groove-deg " + text + ": expected 4 numbers toe,side,heel,side in degrees");
+  return values;
+}
+
+class TubeJointCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.add_option("--leg", o_.leg_path, "Leg outer-surface mesh, in the leg frame L (.ply .stl .obj); required")
+        ->required();
+    c.add_option("--stub", o_.stub_path, "Stub inner-surface mesh, in the stub frame S (.ply .stl .obj); required")
+        ->required();
+    CLI::Option* pitch = c.add_option("--pitch-deg", pitch_deg_,
+                                      "Angle between the leg and stub axes, deg, (0, 90]; required unless --leg-pose");
+    CLI::Option* offset =
+        c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm; default 0");
+    CLI::Option* protrusion =
+        c.add_option("--protrusion", o_.spec.protrusion_mm,
+                     "Stub's distal end to the leg axis along the stub axis, mm; default 0 (give it)");
+    CLI::Option* pose = c.add_option("--leg-pose", o_.leg_pose_path,
+                                     "4x4 text T_S_L (leg coordinates into the stub frame) instead of the three above");
+    pose->excludes(pitch)->excludes(offset)->excludes(protrusion);
+    c.add_option("--leg-markers", o_.leg_markers_path,
+                 "CSV x_mm,y_mm,z_mm,ref_x_mm,ref_y_mm,ref_z_mm: >= 3 leg markers in the scan and in L; the leg's "
+                 "frame then comes from its cylinder fit + markers; default none (the mesh is in L)");
+    c.add_option("--stub-markers", o_.stub_markers_path,
+                 "The same for the stub (known positions in S); default none (the mesh is in S)");
+    CLI::Option* step_deg = c.add_option("--step-deg", step_deg_, "Resample at equal azimuth steps, deg; default 1");
+    CLI::Option* step_mm =
+        c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm; default none");
+    step_deg->excludes(step_mm);
+    CLI::Option* smoothing = c.add_option(
+        "--smoothing", smoothing_mm2_,
+        "Closed smoothing cubic B-spline before resampling: target sum of squared residuals, mm^2 (splprep's s); "
+        "default none");
+    CLI::Option* smoothing_rms = c.add_option("--smoothing-rms", smoothing_rms_mm_,
+                                              "Smoothing target as RMS per intersection point, mm; default none");
+    smoothing->excludes(smoothing_rms);
+    c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg; default 0,0,0,0");
+    c.add_option("--groove-interpolation", interpolation_, "linear or quadratic (Eq. 5); default linear")
+        ->check(CLI::IsMember({"linear", "quadratic"}));
+    c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg; default 45");
+    c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm; default 10");
+    c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm; default 15");
+    c.add_option("--k-normals", o_.solve.geometry.k_normals,
+                 "Vertices per normal fit (PCA plane + quadric), >= 3; default 40");
+    c.add_option("--k-refine", o_.solve.geometry.k_refine,
+                 "Vertices per local surface fit when refining path points onto both scans; 0 = off (the paper's "
+                 "point); default 40");
+    c.add_option("--out-path", o_.out_path,
+                 "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame); default none");
+    c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses; default none");
+    c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses; default none");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+    c.add_flag("--quiet", quiet_, "No progress on stderr");
+    step_mm_option_ = step_mm;
+    pitch_ = pitch;
+  }
+
+  int run() override {
+    TubeJointJobOptions o = o_;
+    if (o.leg_pose_path.empty() && pitch_->count() == 0) {
+      throw Error("tube-joint: give the joint as --pitch-deg A --offset MM --protrusion MM, or --leg-pose FILE");
+    }
+    o.spec.pitch_rad = radians(pitch_deg_);
+    if (step_mm_option_->count() > 0) {
+      o.solve.sampling.spacing = PathSpacing::kArcLength;
+      o.solve.sampling.step_mm = step_mm_;
+    } else {
+      o.solve.sampling.step_rad = radians(step_deg_);
+    }
+    o.solve.sampling.smoothing_mm2 = smoothing_mm2_;
+    o.solve.sampling.smoothing_rms_mm = smoothing_rms_mm_;
+    if (!groove_.empty()) o.solve.tools.groove_rad = parse_groove(groove_);
+    o.solve.tools.interpolation =
+        interpolation_ == "quadratic" ? GrooveInterpolation::kQuadratic : GrooveInterpolation::kLinear;
+    o.solve.tools.weld_angle_rad = radians(weld_deg_);
+    o.solve.progress = stderr_progress(quiet_ || json_);
+    const TubeJointJobResult r = run_tube_joint(o);
+    const TubeJointSolution& s = r.solution;
+    if (json_) {
+      print_json(summary(r));
+    } else {
+      print_text(r);
+    }
+    if (!s.ok) {
+      warn("tube-joint: the intersection is not one closed curve the tool can follow: " + s.termination +
+           "; no file written");
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  static nlohmann::json summary(const TubeJointJobResult& r) {
+    const TubeJointSolution& s = r.solution;
+    const bool ok = s.ok;
+    nlohmann::json j = {{"ok", ok},
+                        {"closed", ok},
+                        {"termination", s.termination},
+                        {"condition", ok ? nlohmann::json(nullptr) : nlohmann::json(s.check.condition)},
+                        {"points", ok ? s.path.points.size() : 0},
+                        {"path_length_mm", s.path.length_mm},
+                        {"max_step_mm", s.path.max_step_mm},
+                        {"min_step_mm", s.path.min_step_mm},
+                        {"smoothed", s.path.smoothed},
+                        {"smoothing_rms_mm", s.path.smoothing_rms_mm},
+                        {"leg_faces", r.leg_faces},
+                        {"stub_faces", r.stub_faces},
+                        {"segments", s.segments},
+                        {"curve_vertices", s.curve_vertices},
+                        {"candidate_pairs", s.candidate_pairs},
+                        {"dropped_vertices", s.dropped_vertices},
+                        {"intersection_s", s.intersection_seconds},
+                        {"total_s", s.total_seconds},
+                        {"written", r.written},
+                        {"leg_marker_residuals_mm", r.leg_marker_residuals_mm},
+                        {"stub_marker_residuals_mm", r.stub_marker_residuals_mm}};
+    if (!ok) {
+      j["where_mm"] = {s.check.where.x(), s.check.where.y(), s.check.where.z()};
+      j["where_azimuth_deg"] = degrees(s.check.azimuth_rad);
+    }
+    return j;
+  }
+
+  static void print_text(const TubeJointJobResult& r) {
+    const TubeJointSolution& s = r.solution;
+    std::printf("meshes        leg %zu faces, stub %zu faces\n", r.leg_faces, r.stub_faces);
+    for (const auto* residuals : {&r.leg_marker_residuals_mm, &r.stub_marker_residuals_mm}) {
+      if (residuals->empty()) continue;
+      std::printf("markers       %s:", residuals == &r.leg_marker_residuals_mm ? "leg" : "stub");
+      for (const double d : *residuals) std::printf(" %.3f", d);
+      std::printf(" mm\n");
+    }
+    std::printf("intersection  %zu segments, %zu curve vertices (%zu triangle pairs tested), %.3f s\n", s.segments,
+                s.curve_vertices, s.candidate_pairs, s.intersection_seconds);
+    if (!s.ok) {
+      std::printf("curve         NOT a single closed curve: %s\n", s.termination.c_str());
+      return;
+    }
+    std::printf("curve         closed, one turn about the stub axis (%zu vertices dropped as backtracking)\n",
+                s.dropped_vertices);
+    std::printf("path          %zu points, length %.3f mm, step min %.3f max %.3f mm%s\n", s.path.points.size(),
+                s.path.length_mm, s.path.min_step_mm, s.path.max_step_mm, s.path.smoothed ? ", smoothed" : "");
+    std::printf("time          %.3f s in all\n", s.total_seconds);
+    for (const std::string& path : r.written) std::printf("wrote         %s\n", path.c_str());
+  }
+
+  TubeJointJobOptions o_;
+  double pitch_deg_ = 90.0;
+  double step_deg_ = 1.0;
+  double step_mm_ = 5.0;
+  double smoothing_mm2_ = -1.0;
+  double smoothing_rms_mm_ = 0.0;
+  std::string groove_;
+  std::string interpolation_ = "linear";
+  double weld_deg_ = 45.0;
+  bool json_ = false;
+  bool quiet_ = false;
+  CLI::Option* step_mm_option_ = nullptr;
+  CLI::Option* pitch_ = nullptr;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(TubeJointCommand, "tube-joint",
+                "Cutting and welding paths for a tubular joint from leg and stub scans (Lind & Ystgaard 2020)")
+
+}  // namespace conform::app

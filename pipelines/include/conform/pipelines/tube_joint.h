@@ -1,0 +1,102 @@
+#pragma once
+// `conform tube-joint`: cutting and welding paths for a tubular joint from a scan of the leg's outer surface and of
+// the stub's inner surface (Lind & Ystgaard 2020). Steps: pose the leg mesh in the stub frame S -> intersect the
+// meshes -> weld and check the intersection graph (conditions (1a)-(1i), toolpath/intersection_graph.h) -> order by
+// stub azimuth -> smooth and resample -> PCA normals, tangent -> cutting and welding poses -> CSV files.
+//
+// A curve that fails a condition (no intersection, two curves, an open or branching curve, not parameterisable by
+// azimuth) is a result with ok == false and a message naming the condition and where: the job ran, the meshes were
+// readable, but the joint they describe has no single closed seam (CLI exit 1). No file is written then.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "conform/core/mesh.h"
+#include "conform/core/progress.h"
+#include "conform/toolpath/azimuth_path.h"
+#include "conform/toolpath/joint_frames.h"
+#include "conform/toolpath/joint_geometry.h"
+#include "conform/toolpath/mesh_intersection.h"
+#include "conform/toolpath/tool_paths.h"
+
+namespace conform {
+
+struct TubeJointSolveOptions {
+  MeshIntersectionOptions intersection;
+  double backtrack_tolerance_mm = 0.05;  // azimuth ordering: a vertex this far behind is dropped, farther fails (1h)
+  PathSamplingOptions sampling;          // azimuth or arc-length step, smoothing
+  JointGeometryOptions geometry;         // k nearest vertices per PCA normal
+  ToolPathOptions tools;                 // groove angles, weld angle, standoffs
+  ProgressFn progress;                   // stages "intersect", "path", "normals"
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TubeJointSolution {
+  bool ok = false;
+  CurveCheck check;         // the failed condition when !ok
+  std::string termination;  // "closed curve" or the check's message
+  // Intersection figures.
+  std::size_t segments = 0;          // triangle-pair segments
+  std::size_t curve_vertices = 0;    // welded graph vertices
+  std::size_t candidate_pairs = 0;   // triangle pairs tested exactly
+  std::size_t dropped_vertices = 0;  // dropped by the azimuth ordering
+  double intersection_seconds = 0.0;
+  double total_seconds = 0.0;
+  // The answer, in S.
+  SampledPath path;
+  std::vector<PathFrame> frames;  // Eq. (4)
+  ToolPaths tools;                // Eq. (10), (11)
+};
+
+// In memory: leg in L posed into S by T_S_L, stub in S. Throws conform::Error for invalid options or meshes.
+TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const Eigen::Isometry3d& T_S_L,
+                                   const TubeJointSolveOptions& options);
+
+struct TubeJointJobOptions {
+  std::string leg_path;       // leg outer surface mesh, in L
+  std::string stub_path;      // stub inner surface mesh, in S
+  TubeJointSpec spec;         // pitch, offset, protrusion: T_L_S (used when leg_pose_path is empty)
+  std::string leg_pose_path;  // 4x4 text T_S_L (the leg's pose in S), instead of the spec
+  // Markers (registration/tube_reference.h): CSV `x_mm,y_mm,z_mm,ref_x_mm,ref_y_mm,ref_z_mm`, a marker's position in
+  // the scan and its known position in the tube's frame (L for the leg, S for the stub), >= 3 rows. Given, the mesh
+  // is not taken to be in its frame: the frame comes from its cylinder fit plus the markers.
+  std::string leg_markers_path;
+  std::string stub_markers_path;
+  TubeJointSolveOptions solve;
+  std::string out_path;  // CSV of the quintuplets; empty: none
+  std::string out_cut;   // CSV of the cutting poses; empty: none
+  std::string out_weld;  // CSV of the welding poses; empty: none
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TubeJointJobResult {
+  TubeJointSolution solution;
+  Eigen::Isometry3d T_S_L = Eigen::Isometry3d::Identity();
+  std::size_t leg_faces = 0;
+  std::size_t stub_faces = 0;
+  std::vector<std::string> written;  // files written (none when !solution.ok)
+  // Per marker file given: |T * marker - known position| of each marker, mm (empty when none was given).
+  std::vector<double> leg_marker_residuals_mm;
+  std::vector<double> stub_marker_residuals_mm;
+};
+
+// The frame of a scanned tube from its cylinder fit and a marker file (above). Throws conform::Error naming the file
+// when it is malformed, has fewer than 3 markers, or the markers do not fit (a residual above 2 mm).
+Eigen::Isometry3d tube_frame_from_marker_file(const Mesh& mesh, const std::string& markers_path,
+                                              std::vector<double>* residuals_mm);
+
+// Throws conform::Error naming the file or option: unreadable meshes, a mesh without faces, NaN coordinates, an
+// unwritable output, invalid options. A failed curve check is a result (solution.ok false), with no file written.
+TubeJointJobResult run_tube_joint(const TubeJointJobOptions& options);
+
+// CSV text. Path: `phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz`; tools: `phi_rad,x_mm,y_mm,z_mm,dx,dy,dz`.
+// 9 decimals, '\n' line ends.
+std::string tube_joint_path_csv(const std::vector<PathFrame>& frames);
+std::string tube_joint_tool_csv(const std::vector<ToolPose>& poses);
+
+}  // namespace conform

@@ -1,0 +1,102 @@
+// The failure cases of the issue, on generated tube meshes: each gives ok == false and a message naming the
+// condition and where, never a path.
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "conform/datasets/tube.h"
+#include "tube_joint_fixture.h"
+
+namespace conform {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+TubeJointSolution solve(const Mesh& leg_L, const Mesh& stub_S, const Eigen::Isometry3d& T_S_L) {
+  return solve_tube_joint(leg_L, stub_S, T_S_L, {});
+}
+
+void expect_failure(const TubeJointSolution& s, const std::string& condition) {
+  EXPECT_FALSE(s.ok);
+  EXPECT_EQ(s.check.condition, condition) << s.termination;
+  EXPECT_NE(s.termination.find("(" + condition + ")"), std::string::npos) << s.termination;
+  EXPECT_TRUE(s.frames.empty());
+}
+
+test::JointCase coarse() {
+  test::JointCase c;
+  c.edge_mm = 8.0;
+  return c;
+}
+
+TEST(TubeJointFailures, MeshesThatDoNotIntersect) {
+  const test::JointCase c = coarse();
+  const TubeJointScans scans = generate_tube_joint(test::joint_options(c));
+  // The leg posed 2 m further along the stub axis than the spec says.
+  const Eigen::Isometry3d T_S_L = Eigen::Translation3d(0, 0, 2000) * T_L_S(test::joint_spec(c)).inverse();
+  const TubeJointSolution s = solve(scans.leg_L, scans.stub_S, T_S_L);
+  expect_failure(s, "1a");
+  EXPECT_NE(s.termination.find("do not intersect"), std::string::npos);
+}
+
+TEST(TubeJointFailures, AStubThroughAClosedLegGivesTwoCurves) {
+  const test::JointCase c = coarse();
+  TubeJointOptions options = test::joint_options(c);
+  options.leg_arc_rad = 2.0 * kPi;
+  options.stub_length_mm = options.protrusion_mm + 400.0;  // out the far side of the leg
+  const TubeJointScans scans = generate_tube_joint(options);
+  const TubeJointSolution s = solve(scans.leg_L, scans.stub_S, T_L_S(test::joint_spec(c)).inverse());
+  expect_failure(s, "1f");
+  EXPECT_NE(s.termination.find("2 separate intersection curves"), std::string::npos) << s.termination;
+  EXPECT_NE(s.termination.find("azimuth"), std::string::npos);
+}
+
+TEST(TubeJointFailures, ALegPatchTooNarrowLeavesTheCurveOpen) {
+  const test::JointCase c = coarse();
+  TubeJointOptions options = test::joint_options(c);
+  options.leg_arc_rad = 20.0 * kPi / 180.0;  // the joint needs about 60 deg of the leg
+  const TubeJointScans scans = generate_tube_joint(options);
+  expect_failure(solve(scans.leg_L, scans.stub_S, T_L_S(test::joint_spec(c)).inverse()), "1d");
+}
+
+// A closed sphere through the stub's wall beside its axis: one closed curve, but on one side of the axis, so it
+// cannot be walked by azimuth.
+TEST(TubeJointFailures, ACurveBesideTheAxisIsNotParameterisableByAzimuth) {
+  TubeOptions tube;
+  tube.radius_mm = 150.0;
+  tube.length_mm = 300.0;
+  tube.edge_mm = 6.0;
+  tube.surface = TubeSurface::kInner;
+  const Mesh stub = generate_tube(tube).mesh;
+  Mesh sphere;
+  const int rings = 24;
+  const int sectors = 48;
+  const Eigen::Vector3d centre(150.0, 0.0, 20.0);
+  for (int i = 0; i <= rings; ++i) {
+    const double polar = kPi * i / rings;
+    for (int j = 0; j < sectors; ++j) {
+      const double a = 2.0 * kPi * j / sectors;
+      // Polar axis along x (radial): the poles lie inside and outside the stub, away from its wall.
+      sphere.vertices.push_back(centre + 40.0 * Eigen::Vector3d(std::cos(polar), std::sin(polar) * std::cos(a),
+                                                                std::sin(polar) * std::sin(a)));
+    }
+  }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const int a = i * sectors + j;
+      const int b = i * sectors + (j + 1) % sectors;
+      if (i > 0) sphere.faces.push_back({a, b, b + sectors});
+      if (i + 1 < rings) sphere.faces.push_back({a, b + sectors, a + sectors});
+    }
+  // The poles are rings of coincident vertices (the zero-area triangles there are left out); the curve is far
+  // from them.
+  const TubeJointSolution s = solve(sphere, stub, Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(s.ok);
+  EXPECT_TRUE(s.check.condition == "1h" || s.check.condition == "1i") << s.termination;
+  EXPECT_NE(s.termination.find("azimuth"), std::string::npos) << s.termination;
+}
+
+}  // namespace
+}  // namespace conform

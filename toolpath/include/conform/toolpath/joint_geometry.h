@@ -1,0 +1,71 @@
+#pragma once
+// The local geometry at each path point (Lind & Ystgaard 2020, Sec. 4): the outward surface normals of the stub,
+// n_s, and of the leg, n_l, each the smallest principal direction of the k nearest vertices of its mesh (PCA), the
+// seam tangent t = normalize(n_s x n_l) (Eq. 3) and the leg's in-surface direction away from the stub,
+// t_l_out = n_l x t (Eq. 6). Everything in the stub frame S. "Outward" is away from each tube's axis, whichever way
+// the mesh's faces wind (the stub is scanned from inside).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "conform/core/mesh.h"
+
+namespace conform {
+
+// A tube's axis in the stub frame, to orient the normals.
+struct TubeAxis {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // unit
+};
+
+// How a normal is fitted to the k nearest vertices. kPlane is the paper's: the smallest principal direction (the
+// normal of the neighbourhood's centroid, off by (distance of the centroid from p) / radius on a curved surface).
+// kQuadric (default, beyond the paper) fits a quadratic height field h(x, y) over the PCA plane, centred at p, and
+// takes its normal at p: exact to second order, so a cylinder's normal comes out within hundredths of a degree.
+enum class NormalFit { kPlane, kQuadric };
+
+struct JointGeometryOptions {
+  int k_normals = 40;  // vertices per normal fit, >= 3 (>= 6 for kQuadric, else it falls back to the plane)
+  NormalFit fit = NormalFit::kQuadric;
+  // Beyond the paper: each path point is moved onto the intersection of the two local surface fits (k_refine
+  // nearest vertices of each mesh), within the half-plane of its azimuth (so phi is kept), by Newton's method. This
+  // averages the scanner noise of k vertices instead of taking one facet's. 0: off (the paper's point).
+  int k_refine = 40;
+  double max_refine_mm = 3.0;  // a refinement that would move a point farther is not applied
+  bool IsValid(std::string* error) const;
+};
+
+// One point of the path (its point refined when k_refine > 0): the quintuplet (phi, p, t, n_s, n_l) of Eq. (4), plus
+// t_l_out.
+struct PathFrame {
+  double phi_rad = 0.0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tangent = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d stub_normal = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d leg_normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d leg_out = Eigen::Vector3d::UnitY();  // t_l_out, Eq. (6)
+};
+
+// The outward unit normal at p from the PCA of the given points (their smallest principal direction), oriented away
+// from the axis. Throws conform::Error with fewer than 3 points.
+Eigen::Vector3d pca_normal(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& p, const TubeAxis& axis,
+                           NormalFit fit = NormalFit::kQuadric);
+
+// Moves p onto both patches (stub and leg) within the half-plane of its azimuth about z; false (p unchanged) when
+// Newton's method does not converge or would move it farther than max_move_mm.
+struct LocalQuadric;
+bool refine_seam_point(const LocalQuadric& stub, const LocalQuadric& leg, double max_move_mm, Eigen::Vector3d* p);
+
+// Eq. (3) and (6) from the two normals. Throws conform::Error when they are parallel (the surfaces touch, no seam).
+PathFrame path_frame(double phi_rad, const Eigen::Vector3d& p, const Eigen::Vector3d& stub_normal,
+                     const Eigen::Vector3d& leg_normal);
+
+// The frames of every path point: normals by PCA of the k nearest vertices of the stub mesh and of the leg mesh
+// (both in S). Throws conform::Error when the options are invalid or a mesh has fewer than k vertices.
+std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
+                                      const Mesh& stub_S, const TubeAxis& stub_axis, const Mesh& leg_S,
+                                      const TubeAxis& leg_axis, const JointGeometryOptions& options);
+
+}  // namespace conform
