@@ -1,0 +1,91 @@
+// `conform generate eroded`: a synthetic eroded turbine-blade surface with craters, as grid files with the reference
+// grid and the ground-truth rims beside it (pipelines/generate_eroded.h).
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/generate_eroded.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+// "X,Y,RADIUS,DEPTH" -> a crater; conform::Error naming the flag otherwise.
+Crater parse_crater(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x)) {
+      throw Error("--crater " + text + ": '" + item + "' is not a number; expected X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
+    }
+    v.push_back(x);
+  }
+  if (v.size() != 4) throw Error("--crater " + text + ": expected 4 comma-separated numbers X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
+  return {v[0], v[1], v[2], v[3]};
+}
+
+class GenerateErodedCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.add_option("--out", out_, "Eroded grid CSV to write (row,col,x_mm,y_mm,z_mm); the reference grid goes to "
+                                "<name>.reference.csv, the rims to <name>.rims.csv; required")
+        ->required();
+    c.add_option("--rows", o_.rows, "Grid rows (along y); default 41");
+    c.add_option("--cols", o_.cols, "Grid columns (along x); default 61");
+    c.add_option("--length", o_.length_mm, "Extent along x (chord), mm; default 120");
+    c.add_option("--width", o_.width_mm, "Extent along y (span), mm; default 80");
+    c.add_option("--chord-radius", o_.chord_radius_mm, "Curvature radius along x, mm; default 150");
+    c.add_option("--span-radius", o_.span_radius_mm, "Curvature radius along y, mm; default 400");
+    c.add_option("--twist", o_.twist_per_mm, "Twist: z += twist * x * y, 1/mm; default 0.002");
+    c.add_option("--crater", craters_,
+                 "Crater X_MM,Y_MM,RADIUS_MM,DEPTH_MM (repeatable); default one at 0,0 of radius 15 mm, depth 2 mm");
+    c.add_option("--noise", o_.noise_mm, "Noise of the eroded grid along z (1 sigma), mm; default 0.01");
+    c.add_option("--seed", seed_, "Seed of the noise; default 1");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  int run() override {
+    GenerateErodedOptions options;
+    options.eroded = o_;
+    options.eroded.seed = seed_;
+    if (!craters_.empty()) {
+      options.eroded.craters.clear();
+      for (const std::string& text : craters_) options.eroded.craters.push_back(parse_crater(text));
+    }
+    options.out_path = out_;
+    const GenerateErodedResult r = run_generate_eroded(options);
+    if (json_) {
+      print_json({{"eroded", r.eroded_path}, {"reference", r.reference_path}, {"rims", r.rims_path},
+                  {"rows", r.rows}, {"cols", r.cols}, {"craters", r.craters}, {"max_depth_mm", r.max_depth_mm},
+                  {"noise_mm", options.eroded.noise_mm}, {"seed", seed_}});
+    } else {
+      std::printf("grid        %d x %d points, %g x %g mm\n", r.rows, r.cols, o_.length_mm, o_.width_mm);
+      std::printf("craters     %zu, deepest %g mm, noise %g mm\n", r.craters, r.max_depth_mm, options.eroded.noise_mm);
+      std::printf("eroded      %s\nreference   %s\nrims        %s\n", r.eroded_path.c_str(), r.reference_path.c_str(),
+                  r.rims_path.c_str());
+    }
+    return 0;
+  }
+
+ private:
+  ErodedOptions o_;
+  std::vector<std::string> craters_;
+  std::uint64_t seed_ = 1;
+  std::string out_;
+  bool json_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(GenerateErodedCommand, "generate eroded",
+                "Synthetic eroded blade surface with craters: eroded and reference grids, ground-truth rims")
+
+}  // namespace conform::app
