@@ -28,9 +28,9 @@ ProfileEdgeResidual residual_of(const std::vector<double>& residual_mm) {
   return out;
 }
 
-std::string format_selection(const char* format, double a, double b) {
+std::string format_selection(const char* format, double a, double ratio, double b) {
   char text[200];
-  std::snprintf(text, sizeof(text), format, a, b);
+  std::snprintf(text, sizeof(text), format, a, ratio, b);
   return text;
 }
 
@@ -178,9 +178,9 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
   if (options.model == ProfileEdgeModel::kAuto) {
     const bool cubic_enough = fit.cubic_fit.rms_mm <= options.auto_ratio * fit.spline_fit.rms_mm;
     fit.model = cubic_enough ? ProfileEdgeModel::kCubic : ProfileEdgeModel::kSpline;
-    fit.selection = format_selection(cubic_enough ? "auto: cubic RMS %.4f mm is within the ratio of spline RMS %.4f mm"
-                                                  : "auto: cubic RMS %.4f mm exceeds the ratio of spline RMS %.4f mm",
-                                     fit.cubic_fit.rms_mm, fit.spline_fit.rms_mm);
+    fit.selection = format_selection(cubic_enough ? "auto: cubic RMS %.4f mm <= %.2f x spline RMS %.4f mm"
+                                                  : "auto: cubic RMS %.4f mm > %.2f x spline RMS %.4f mm",
+                                     fit.cubic_fit.rms_mm, options.auto_ratio, fit.spline_fit.rms_mm);
   } else {
     fit.selection = std::string("asked for: ") + to_string(options.model);
   }

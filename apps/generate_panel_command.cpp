@@ -1,0 +1,131 @@
+// `conform generate plate` and `conform generate nosecone`: a deformed composite panel with an opening, its scan,
+// its nominal contour, surface and deburring trajectory, and the deformed trajectory as ground truth
+// (pipelines/generate_panel.h). One file for both: they share every option but the shape's own.
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "command.h"
+#include "conform/pipelines/generate_panel.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+class GeneratePanelCommand : public Command {
+ public:
+  explicit GeneratePanelCommand(PanelShape shape) { o_.shape = shape; }
+
+  void configure(CLI::App& c) override {
+    c.add_option("--out", out_,
+                 "Scan to write, .ply; beside it <name>.nominal.ply, .contour.csv, .trajectory.csv, .truth.csv, "
+                 ".truth.json; required")
+        ->required();
+    if (o_.shape == PanelShape::kPlate) {
+      configure_plate(c);
+    } else {
+      configure_nosecone(c);
+    }
+    c.add_option("--band", o_.band_mm,
+                 "Nominal surface and scan: the panel within this of the opening, mm; default 40");
+    c.add_option("--thickness", o_.thickness_mm, "Depth of the opening's flank (the panel's edge), mm; default 4");
+    c.add_option("--surface-edge", o_.surface_edge_mm, "Edge length of the nominal surface mesh, mm; default 2");
+    c.add_option("--contour-spacing", o_.contour_spacing_mm, "Between contour points, mm; default 0.24");
+    c.add_option("--trajectory-spacing", o_.trajectory_spacing_mm, "Between trajectory points, mm; default 1");
+    c.add_option("--scan-points", o_.scan_points,
+                 "Scan points drawn before the missing parts are cut; default 300000 (nosecone), 120000 (plate)");
+    c.add_option("--noise", o_.noise_mm, "Gaussian noise along the surface normal, sigma, mm; default 0.05");
+    c.add_option("--missing", o_.missing_fraction,
+                 "Share of the contour's length with no scan near it, in [0, 0.9]; default 0");
+    c.add_option("--missing-patches", o_.missing_patches, "Arcs the missing share is split into; default 4");
+    c.add_option("--missing-depth", o_.missing_depth_mm, "How far from the edge a missing arc reaches, mm; default 15");
+    c.add_option("--holes", o_.holes, "Missing discs of the scan at seeded places; default 0");
+    c.add_option("--hole-radius", o_.hole_radius_mm, "Radius of those discs, mm; default 10");
+    c.add_option("--seed", o_.seed, "Seed of the scan's sampling, noise and missing parts; default 1");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+    c.add_flag("--quiet", quiet_, "No progress on stderr");
+  }
+
+  int run() override {
+    GeneratePanelOptions options;
+    options.panel = o_;
+    options.out_path = out_;
+    options.panel.progress = stderr_progress(quiet_);
+    const GeneratePanelResult r = run_generate_panel(options);
+    if (json_) {
+      print_json({{"scan", r.files.scan},
+                  {"nominal", r.files.nominal},
+                  {"contour", r.files.contour},
+                  {"trajectory", r.files.trajectory},
+                  {"truth_trajectory", r.files.truth_trajectory},
+                  {"truth_file", r.files.truth_json},
+                  {"scan_points", r.scan_points},
+                  {"contour_points", r.contour_points},
+                  {"trajectory_rows", r.trajectory_rows},
+                  {"surface_vertices", r.surface_vertices},
+                  {"surface_faces", r.surface_faces},
+                  {"perimeter_mm", r.perimeter_mm},
+                  {"truth", r.truth}});
+      return 0;
+    }
+    std::printf("scan        %s (%zu points)\n", r.files.scan.c_str(), r.scan_points);
+    std::printf("nominal     %s (%zu vertices, %zu faces)\n", r.files.nominal.c_str(), r.surface_vertices,
+                r.surface_faces);
+    std::printf("contour     %s (%zu points, %.3f mm)\n", r.files.contour.c_str(), r.contour_points, r.perimeter_mm);
+    std::printf("trajectory  %s (%zu rows)\n", r.files.trajectory.c_str(), r.trajectory_rows);
+    std::printf("truth       %s, %s\n", r.files.truth_trajectory.c_str(), r.files.truth_json.c_str());
+    return 0;
+  }
+
+ private:
+  void configure_plate(CLI::App& c) {
+    c.description("Synthetic double-curvature plate with a porthole, sagging between clamps, scanned around it");
+    c.add_option("--radius-x", o_.plate_radius_x_mm, "Curvature radius along x, mm; default 2500");
+    c.add_option("--radius-y", o_.plate_radius_y_mm, "Curvature radius along y, mm; default 4000");
+    c.add_option("--porthole-width", o_.porthole_width_mm, "Porthole along x (diameter when round), mm; default 380");
+    c.add_option("--porthole-height", o_.porthole_height_mm, "Porthole along y, mm; default 260");
+    c.add_flag("--round", o_.round, "A round porthole (diameter --porthole-width); default oval");
+    c.add_option("--clamp-span", o_.clamp_span_mm, "Distance between the clamps (along x), mm; default 1000");
+    c.add_option("--sag", o_.sag_mm, "Sag at mid-span between the clamps, mm; default 4");
+    c.add_option("--bend", o_.bend_mm, "Bending across the porthole, mm; default 1.5");
+    c.add_option("--twist", o_.twist_mm, "Twist, mm; default 1.5");
+  }
+
+  void configure_nosecone(CLI::App& c) {
+    c.description("Synthetic barrel section with a cockpit-like opening with corners, deformed, scanned around it");
+    c.add_option("--radius", o_.barrel_radius_mm, "Barrel radius, mm; default 1000");
+    c.add_option("--window-height", o_.window_height_mm, "Opening along the axis, mm; default 440");
+    c.add_option("--window-bottom", o_.window_bottom_mm,
+                 "Opening's width (arc length) at its rear edge, mm; default 900");
+    c.add_option("--window-top", o_.window_top_mm, "Opening's width at its front edge, mm; default 600");
+    c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the opening's corners, mm (0: sharp); default 3");
+    c.add_option("--ovality", o_.ovality_mm, "Ovality of the cross-section, mm; default 3");
+    c.add_option("--droop", o_.droop_mm, "Droop of the front end, mm; default 4");
+  }
+
+  PanelOptions o_;
+  std::string out_;
+  bool json_ = false;
+  bool quiet_ = false;
+};
+
+class GeneratePlateCommand : public GeneratePanelCommand {
+ public:
+  GeneratePlateCommand() : GeneratePanelCommand(PanelShape::kPlate) {}
+};
+
+class GenerateNoseconeCommand : public GeneratePanelCommand {
+ public:
+  GenerateNoseconeCommand() : GeneratePanelCommand(PanelShape::kNoseCone) {}
+};
+
+}  // namespace
+
+CONFORM_COMMAND(GeneratePlateCommand, "generate plate",
+                "Synthetic deformed plate with a porthole: scan, nominal contour/surface/trajectory, ground truth")
+CONFORM_COMMAND(
+    GenerateNoseconeCommand, "generate nosecone",
+    "Synthetic deformed barrel with a cockpit-like opening: scan, nominal contour/surface/trajectory, truth")
+
+}  // namespace conform::app

@@ -1,0 +1,205 @@
+// `conform sicp`: deburring on a deformed part. Maps the nominal trajectory onto the scanned part by
+// Subdivision-ICP, one rigid transform or the projection model (pipelines/sicp.h) and writes it with the same rows.
+// Exit code 1 when the registration did not converge (nothing is written then).
+
+#include <cstdio>
+#include <string>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/sicp.h"
+#include "json_values.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+nlohmann::json error_json(const TrajectoryError& e) {
+  return {{"path_mean_mm", e.path_mean_mm},
+          {"path_max_mm", e.path_max_mm},
+          {"mean_mm", e.mean_mm},
+          {"rms_mm", e.rms_mm},
+          {"max_mm", e.max_mm},
+          {"worst_row", e.worst_row},
+          {"normal_mean_deg", e.normal_mean_deg},
+          {"normal_max_deg", e.normal_max_deg},
+          {"max_step_mm", e.max_step_mm},
+          {"truth_step_mm", e.truth_step_mm}};
+}
+
+class SicpCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.description("Map a deburring trajectory onto a deformed part: Subdivision-ICP (or rigid, or projection)");
+    SicpCompensationOptions& o = options_.compensation;
+    c.add_option("--contour", options_.contour_path,
+                 "Nominal contour: CSV x_mm,y_mm,z_mm in order, or a mesh (.ply .stl .obj) whose boundary loop on the "
+                 "scan is taken; required")
+        ->required();
+    c.add_option("--scan", options_.scan_path, "Scan of the deformed part, cloud or mesh, mm; required")->required();
+    c.add_option("--trajectory", options_.trajectory_path,
+                 "Nominal trajectory, CSV x_mm,y_mm,z_mm,nx,ny,nz (unit tool normals); required")
+        ->required();
+    c.add_option("--surface", options_.surface_path,
+                 "Nominal surface around the contour (mesh: point-to-surface); default the contour mesh, or none "
+                 "(contour-only, point-to-point, no joint refinement)");
+    c.add_option("--segment-length", o.sicp.segmentation.segment_length_mm,
+                 "Longest segment (epsilon), mm; default 60");
+    c.add_option("--overlap", o.sicp.segmentation.overlap,
+                 "Overlap at each junction, share of the shorter segment, in (0, 1); default 0.3");
+    c.add_option("--curvature-radius", o.sicp.segmentation.curvature_radius_mm,
+                 "Osculating radius below which a contour point is a corner (a segment boundary), mm; 0: none; "
+                 "default 15");
+    c.add_option("--model", model_, "sicp, rigid or projection; default sicp")
+        ->check(CLI::IsMember({"sicp", "rigid", "projection"}));
+    c.add_option("--projection-fit", fit_, "The projection model's height field: parabola or spline; default parabola")
+        ->check(CLI::IsMember({"parabola", "spline"}));
+    c.add_option("--neighbourhood", o.sicp.neighbourhood_mm, "Contour neighbourhood: scan within this, mm; default 10");
+    c.add_option("--stability", o.sicp.stability_mm,
+                 "Stability region reaches this far from the contour, mm; default 30");
+    c.add_option("--max-distance", o.sicp.max_distance_mm, "Pair distance of the segment ICPs, mm; default 5");
+    c.add_option("--coarse-max-distance", o.sicp.coarse_max_distance_mm,
+                 "Pair distance of the first rigid ICP (the scan is roughly in place), mm; default 20");
+    c.add_option("--scan-voxel", o.sicp.scan_voxel_mm, "Scan thinned to one point per voxel, mm; 0: all; default 1");
+    c.add_flag("--no-joint", no_joint_, "Segments registered independently (the paper), no joint refinement");
+    c.add_option("--joint-weight", o.sicp.joint.weight,
+                 "Weight of neighbouring segments' disagreement in the joint refinement; default 1");
+    c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate; default scan")
+        ->check(CLI::IsMember({"scan", "rotate"}));
+    c.add_option("--truth", options_.truth_path,
+                 "Ground-truth trajectory (same columns and rows): report the error against it");
+    c.add_option("--out-trajectory", options_.out_trajectory_path,
+                 "Write the compensated trajectory (CSV, same rows and order) when the registration converged");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+    c.add_flag("--quiet", quiet_, "No progress on stderr");
+  }
+
+  int run() override {
+    SicpCompensationOptions& o = options_.compensation;
+    o.model = model_ == "rigid"        ? SicpModel::kRigid
+              : model_ == "projection" ? SicpModel::kProjection
+                                       : SicpModel::kSicp;
+    o.projection.fit = fit_ == "spline" ? ProjectionFit::kThinPlateSpline : ProjectionFit::kParabola;
+    o.sicp.joint_refinement = !no_joint_;
+    o.normals.from_scan = normals_ == "scan";
+    options_.progress = stderr_progress(quiet_);
+    const SicpJobResult r = run_sicp(options_);
+    warn_all(r.warnings);
+    if (json_) {
+      print_json(summary(r));
+    } else {
+      print_text(r);
+    }
+    if (!r.compensation.converged) {
+      std::fprintf(stderr, "conform: the registration did not converge (%s); no trajectory written\n",
+                   r.compensation.termination.c_str());
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  static nlohmann::json summary(const SicpJobResult& r) {
+    const SicpCompensationResult& c = r.compensation;
+    const SicpResult& g = c.registration;
+    nlohmann::json segments = nlohmann::json::array();
+    for (std::size_t k = 0; k < g.segments.size(); ++k) {
+      const ContourSegment& s = g.segmentation.segments[k];
+      const SicpSegmentFit& f = g.segments[k];
+      segments.push_back({{"index", k},
+                          {"start_mm", s.start_mm},
+                          {"length_mm", s.length_mm},
+                          {"overlap_before_mm", s.overlap_before_mm},
+                          {"overlap_after_mm", s.overlap_after_mm},
+                          {"starts_at_corner", s.starts_at_corner},
+                          {"ends_at_corner", s.ends_at_corner},
+                          {"neighbourhood_points", f.neighbourhood_points},
+                          {"stability_points", f.stability_points},
+                          {"icp_iterations", f.icp.iterations},
+                          {"rms_mm", f.rms_mm},
+                          {"converged", f.converged}});
+    }
+    nlohmann::json j = {{"model", to_string(c.model)},
+                        {"converged", c.converged},
+                        {"termination", c.termination},
+                        {"rms_mm", c.model == SicpModel::kSicp ? g.rms_mm : g.coarse.rms_mm},
+                        {"segments", segments},
+                        {"corners", g.segmentation.corners.size()},
+                        {"contour_source", r.contour_source},
+                        {"contour_points", r.contour_points},
+                        {"contour_length_mm", r.contour_length_mm},
+                        {"scan_points", r.scan_points},
+                        {"scan_points_used", g.scan_points_used},
+                        {"surface_faces", r.surface_faces},
+                        {"trajectory_rows", r.trajectory_rows},
+                        {"normals_from_scan", c.normals_from_scan},
+                        {"rigid",
+                         {{"T_scan_nominal", to_json(g.T_scan_nominal_rigid)},
+                          {"rms_mm", g.coarse.rms_mm},
+                          {"iterations", g.coarse.iterations},
+                          {"converged", g.coarse.converged}}},
+                        {"joint",
+                         {{"ran", g.joint.ran},
+                          {"usable", g.joint.usable},
+                          {"termination", g.joint.termination},
+                          {"solver_iterations", g.joint.solver_iterations},
+                          {"max_disagreement_before_mm", g.joint.max_disagreement_before_mm},
+                          {"max_disagreement_after_mm", g.joint.max_disagreement_after_mm}}},
+                        {"out_trajectory", r.out_trajectory_path},
+                        {"warnings", r.warnings}};
+    if (c.model == SicpModel::kProjection) {
+      const ProjectionModel& p = c.projection;
+      j["projection"] = {
+          {"fit", to_string(p.fit)}, {"samples", p.samples}, {"rms_mm", p.rms_mm}, {"normal", to_json(p.normal)}};
+    }
+    if (r.error) j["error"] = error_json(*r.error);
+    return j;
+  }
+
+  static void print_text(const SicpJobResult& r) {
+    const SicpCompensationResult& c = r.compensation;
+    const SicpResult& g = c.registration;
+    std::printf("contour      %zu points, %.3f mm, %s; %zu corners\n", r.contour_points, r.contour_length_mm,
+                r.contour_source.c_str(), g.segmentation.corners.size());
+    std::printf("scan         %zu points, %zu after thinning\n", r.scan_points, g.scan_points_used);
+    std::printf("rigid        rms %.4f mm, %s after %d iterations\n", g.coarse.rms_mm,
+                g.coarse.converged ? "converged" : "not converged", g.coarse.iterations);
+    if (c.model == SicpModel::kSicp) {
+      std::size_t converged = 0;
+      for (const SicpSegmentFit& f : g.segments) converged += f.converged ? 1 : 0;
+      std::printf("segments     %zu (%zu converged), rms %.4f mm\n", g.segments.size(), converged, g.rms_mm);
+      std::printf("joint        %s; overlap disagreement %.4f -> %.4f mm\n", g.joint.termination.c_str(),
+                  g.joint.max_disagreement_before_mm, g.joint.max_disagreement_after_mm);
+    }
+    if (c.model == SicpModel::kProjection) {
+      std::printf("projection   %s, %zu samples, rms %.4f mm\n", to_string(c.projection.fit), c.projection.samples,
+                  c.projection.rms_mm);
+    }
+    std::printf("model        %s: %s\n", to_string(c.model), c.converged ? "converged" : c.termination.c_str());
+    std::printf("trajectory   %zu rows, %zu tool normals from the scan\n", r.trajectory_rows, c.normals_from_scan);
+    if (r.error) {
+      const TrajectoryError& e = *r.error;
+      std::printf("vs truth     off the true path: mean %.4f mm, max %.4f mm\n", e.path_mean_mm, e.path_max_mm);
+      std::printf(
+          "             row by row: mean %.4f mm, max %.4f mm (row %zu); tool normals mean %.3f deg, max %.3f deg\n",
+          e.mean_mm, e.max_mm, e.worst_row + 1, e.normal_mean_deg, e.normal_max_deg);
+      std::printf("smoothness   largest row-to-row change of the correction %.4f mm (truth %.4f mm)\n", e.max_step_mm,
+                  e.truth_step_mm);
+    }
+    if (!r.out_trajectory_path.empty()) std::printf("written      %s\n", r.out_trajectory_path.c_str());
+  }
+
+  SicpJobOptions options_;
+  std::string model_ = "sicp";
+  std::string fit_ = "parabola";
+  std::string normals_ = "scan";
+  bool no_joint_ = false;
+  bool json_ = false;
+  bool quiet_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(SicpCommand, "sicp", "Deburring on a deformed part: Subdivision-ICP trajectory compensation")
+
+}  // namespace conform::app

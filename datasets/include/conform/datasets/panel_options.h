@@ -1,0 +1,87 @@
+#pragma once
+// What `generate plate` and `generate nosecone` make: a composite panel with an opening (a porthole in a
+// double-curvature plate, a cockpit-like window with corners in a barrel section), deformed by a known smooth field,
+// scanned around the opening, with the deburring trajectory along the opening's edge and its deformed ground truth.
+//
+// Shapes, in the panel's own frame (mm):
+//   plate:    z = x^2 / (2 Rx) + y^2 / (2 Ry) (double curvature), the porthole an ellipse (or a circle) centred at
+//             (porthole_x, porthole_y); clamps along x = +-clamp_span / 2.
+//   nosecone: a barrel of radius R about the x axis, S(x, s) = (x, R sin(s / R), R cos(s / R)), s the arc length
+//             from the top; the opening a trapezoid in (x, s): bottom edge (x = -h/2) wide w_bottom, top edge (x =
+//             +h/2) wide w_top, corners rounded with corner_radius (0: sharp).
+// The opening has a flank: the panel's edge, `thickness` deep along -n, which the scanner sees and the tool deburrs.
+// The nominal surface is the band of the panel within band_mm of the opening, plus the flank.
+//
+// The deformation (deformed = G * (p + D(p)), G a rigid motion):
+//   plate:    D = w(x, y) e_z, w = -sag * beam(x) + bend * (2 (y - y_c) / W)^2 + twist * (2x / L)(2 (y - y_c) / W),
+//   where
+//             beam is the normalised deflection of a uniformly loaded simply supported beam between the clamps
+//             (16/5 (xi - 2 xi^3 + xi^4), xi = x / L + 1/2, 1 at mid-span) and W the porthole's height.
+//   nosecone: D = ovality cos(2 theta) e_r - droop ((x + L/2) / L)^2 e_z (the cross-section squashed under gravity,
+//             the front drooping), theta = s / R.
+
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "conform/core/progress.h"
+
+namespace conform {
+
+enum class PanelShape { kPlate, kNoseCone };
+
+struct PanelOptions {
+  PanelShape shape = PanelShape::kPlate;
+
+  // --- plate ---
+  double plate_radius_x_mm = 2500.0;  // Rx, curvature radius along x
+  double plate_radius_y_mm = 4000.0;  // Ry
+  double porthole_width_mm = 380.0;   // along x
+  double porthole_height_mm = 260.0;  // along y; equal to the width (or round = true) for a round porthole
+  bool round = false;                 // a circle of diameter porthole_width
+  double porthole_x_mm = 60.0;        // centre, off the clamps' middle so the sag is not symmetric about it
+  double porthole_y_mm = 30.0;
+  double clamp_span_mm = 1000.0;  // L: clamps at x = +-L/2
+
+  // --- nose cone ---
+  double barrel_radius_mm = 1000.0;
+  double window_height_mm = 440.0;   // h, along x
+  double window_bottom_mm = 900.0;   // w_bottom, arc length at x = -h/2
+  double window_top_mm = 600.0;      // w_top, arc length at x = +h/2
+  double corner_radius_mm = 3.0;     // 0: sharp corners
+  double barrel_length_mm = 1400.0;  // L of the droop
+
+  // --- both ---
+  double band_mm = 40.0;               // nominal surface and scan: the panel within this of the opening
+  double thickness_mm = 4.0;           // depth of the flank
+  double surface_edge_mm = 2.0;        // edge length of the nominal surface mesh
+  double contour_spacing_mm = 0.24;    // between contour points (~10,000 for the default nose cone)
+  double trajectory_spacing_mm = 1.0;  // between trajectory points
+  std::int64_t scan_points = 0;        // 0: 300,000 for the nose cone, 120,000 for the plate
+  double noise_mm = 0.05;              // Gaussian, along the deformed surface normal, sigma
+  double missing_fraction = 0.0;       // share of the contour's length, in `missing_patches` arcs, with no scan near it
+  int missing_patches = 4;
+  double missing_depth_mm = 15.0;  // how far from the edge a missing arc reaches
+  int holes = 0;                   // more missing discs of the scan, at seeded places on the band
+  double hole_radius_mm = 10.0;
+
+  // --- the deformation ---
+  double sag_mm = 4.0;                                               // plate: mid-span sag between the clamps
+  double bend_mm = 1.5;                                              // plate: bending across
+  double twist_mm = 1.5;                                             // plate: twist
+  double ovality_mm = 3.0;                                           // nose cone
+  double droop_mm = 4.0;                                             // nose cone
+  Eigen::Vector3d rotation_deg = Eigen::Vector3d(0.3, -0.2, 0.4);    // G: rotation vector, degrees
+  Eigen::Vector3d translation_mm = Eigen::Vector3d(1.5, -1.0, 2.0);  // G: translation
+
+  std::uint64_t seed = 1;
+  ProgressFn progress;  // stages "panel: surface", "panel: scan"
+
+  // False (and why, naming the option) for a value out of range or not finite, or a size that would exhaust memory.
+  bool IsValid(std::string* error) const;
+};
+
+const char* to_string(PanelShape shape);
+
+}  // namespace conform

@@ -1,0 +1,158 @@
+#include "conform/datasets/panel_shape.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace conform {
+namespace {
+
+double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+
+// Appends samples from the last one to (q, m), adding tau for the length moved and the turn of m.
+void append(std::vector<OpeningSample>& edge, const Eigen::Vector2d& q, const Eigen::Vector2d& m, double band) {
+  OpeningSample s{q, m.normalized(), 0.0};
+  if (!edge.empty()) {
+    const OpeningSample& last = edge.back();
+    double turn = std::abs(angle_of(s.m) - angle_of(last.m));
+    if (turn > M_PI) turn = 2.0 * M_PI - turn;
+    s.tau = last.tau + (q - last.q).norm() + 0.5 * band * turn;
+  }
+  edge.push_back(s);
+}
+
+std::vector<OpeningSample> ellipse_edge(const PanelOptions& o, double step) {
+  const double a = 0.5 * o.porthole_width_mm;
+  const double b = o.round ? a : 0.5 * o.porthole_height_mm;
+  const Eigen::Vector2d c(o.porthole_x_mm, o.porthole_y_mm);
+  const double perimeter = M_PI * (3.0 * (a + b) - std::sqrt((3.0 * a + b) * (a + 3.0 * b)));  // Ramanujan
+  const int n = std::max(180, static_cast<int>(std::ceil(perimeter / step)));
+  std::vector<OpeningSample> edge;
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2.0 * M_PI * i / n;
+    append(edge, c + Eigen::Vector2d(a * std::cos(phi), b * std::sin(phi)),
+           Eigen::Vector2d(b * std::cos(phi), a * std::sin(phi)), o.band_mm);
+  }
+  return edge;
+}
+
+// A convex polygon, counter-clockwise, with corners rounded to radius r: straight edges between arcs about the
+// corners of the polygon shrunk by r. r = 0 leaves fans (the same point, m turning) at the corners.
+std::vector<OpeningSample> window_edge(const PanelOptions& o, double step) {
+  const double h = 0.5 * o.window_height_mm;
+  const std::array<Eigen::Vector2d, 4> v = {
+      Eigen::Vector2d(-h, -0.5 * o.window_bottom_mm), Eigen::Vector2d(h, -0.5 * o.window_top_mm),
+      Eigen::Vector2d(h, 0.5 * o.window_top_mm), Eigen::Vector2d(-h, 0.5 * o.window_bottom_mm)};
+  std::array<Eigen::Vector2d, 4> normal;  // outward of edge k = v[k] -> v[k+1]
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d t = (v[static_cast<std::size_t>((k + 1) % 4)] - v[static_cast<std::size_t>(k)]).normalized();
+    normal[static_cast<std::size_t>(k)] = Eigen::Vector2d(t.y(), -t.x());
+  }
+  const double r = o.corner_radius_mm;
+  std::array<Eigen::Vector2d, 4> centre;  // arc centre of corner k (between edges k-1 and k)
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d& n1 = normal[static_cast<std::size_t>((k + 3) % 4)];
+    const Eigen::Vector2d& n2 = normal[static_cast<std::size_t>(k)];
+    centre[static_cast<std::size_t>(k)] = v[static_cast<std::size_t>(k)] - r * (n1 + n2) / (1.0 + n1.dot(n2));
+  }
+  std::vector<OpeningSample> edge;
+  const double max_turn = 2.0 * M_PI / 180.0;
+  for (int k = 0; k < 4; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    const Eigen::Vector2d& from_n = normal[(K + 3) % 4];
+    const Eigen::Vector2d& to_n = normal[K];
+    double turn = angle_of(to_n) - angle_of(from_n);
+    while (turn < 0.0) turn += 2.0 * M_PI;
+    const int arc_steps = std::max(2, static_cast<int>(std::ceil(std::max(r * turn / step, turn / max_turn))));
+    for (int i = 0; i < arc_steps; ++i) {  // the corner's arc (or fan), without its end
+      const double a = angle_of(from_n) + turn * i / arc_steps;
+      const Eigen::Vector2d m(std::cos(a), std::sin(a));
+      append(edge, centre[K] + r * m, m, o.band_mm);
+    }
+    const Eigen::Vector2d p0 = centre[K] + r * to_n;
+    const Eigen::Vector2d p1 = centre[(K + 1) % 4] + r * to_n;
+    const int line_steps = std::max(1, static_cast<int>(std::ceil((p1 - p0).norm() / step)));
+    for (int i = 0; i < line_steps; ++i) append(edge, p0 + (p1 - p0) * (double(i) / line_steps), to_n, o.band_mm);
+  }
+  return edge;
+}
+
+// Normalised deflection of a uniformly loaded simply supported beam, 1 at mid-span, 0 at the supports.
+double beam(double xi) { return 16.0 / 5.0 * (xi - 2.0 * xi * xi * xi + xi * xi * xi * xi); }
+
+Eigen::Vector3d displacement(const PanelOptions& o, const Eigen::Vector3d& p) {
+  if (o.shape == PanelShape::kPlate) {
+    const double xi = p.x() / o.clamp_span_mm + 0.5;
+    const double u = 2.0 * p.x() / o.clamp_span_mm;
+    const double v = 2.0 * (p.y() - o.porthole_y_mm) / (o.round ? o.porthole_width_mm : o.porthole_height_mm);
+    return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v);
+  }
+  const double theta = std::atan2(p.y(), p.z());
+  const Eigen::Vector3d e_r(0.0, std::sin(theta), std::cos(theta));
+  const double front = (p.x() + 0.5 * o.barrel_length_mm) / o.barrel_length_mm;
+  return o.ovality_mm * std::cos(2.0 * theta) * e_r - o.droop_mm * front * front * Eigen::Vector3d::UnitZ();
+}
+
+}  // namespace
+
+Eigen::Vector3d panel_surface(const PanelOptions& o, const Eigen::Vector2d& q) {
+  if (o.shape == PanelShape::kPlate) {
+    return {q.x(), q.y(), q.x() * q.x() / (2.0 * o.plate_radius_x_mm) + q.y() * q.y() / (2.0 * o.plate_radius_y_mm)};
+  }
+  const double theta = q.y() / o.barrel_radius_mm;
+  return {q.x(), o.barrel_radius_mm * std::sin(theta), o.barrel_radius_mm * std::cos(theta)};
+}
+
+Eigen::Vector3d panel_normal(const PanelOptions& o, const Eigen::Vector2d& q) {
+  if (o.shape == PanelShape::kPlate) {
+    return Eigen::Vector3d(-q.x() / o.plate_radius_x_mm, -q.y() / o.plate_radius_y_mm, 1.0).normalized();
+  }
+  const double theta = q.y() / o.barrel_radius_mm;
+  return {0.0, std::sin(theta), std::cos(theta)};
+}
+
+std::vector<OpeningSample> opening_edge(const PanelOptions& options, double step_mm) {
+  return options.shape == PanelShape::kPlate ? ellipse_edge(options, step_mm) : window_edge(options, step_mm);
+}
+
+OpeningSample edge_at(const std::vector<OpeningSample>& edge, double total_tau, double tau) {
+  tau = std::fmod(tau, total_tau);
+  if (tau < 0.0) tau += total_tau;
+  const auto it =
+      std::upper_bound(edge.begin(), edge.end(), tau, [](double t, const OpeningSample& s) { return t < s.tau; });
+  const std::size_t i1 = static_cast<std::size_t>(it - edge.begin());  // >= 1: edge[0].tau = 0 <= tau
+  const OpeningSample& a = edge[i1 - 1];
+  const OpeningSample& b = i1 < edge.size() ? edge[i1] : edge.front();
+  const double b_tau = i1 < edge.size() ? b.tau : total_tau;
+  const double f = b_tau > a.tau ? (tau - a.tau) / (b_tau - a.tau) : 0.0;
+  OpeningSample s;
+  s.q = a.q + f * (b.q - a.q);
+  s.m = (a.m + f * (b.m - a.m)).normalized();
+  s.tau = tau;
+  return s;
+}
+
+Eigen::Isometry3d panel_rigid_motion(const PanelOptions& o) {
+  const Eigen::Vector3d rv = o.rotation_deg * (M_PI / 180.0);
+  Eigen::Isometry3d G = Eigen::Isometry3d::Identity();
+  if (rv.norm() > 0.0) G.linear() = Eigen::AngleAxisd(rv.norm(), rv.normalized()).toRotationMatrix();
+  G.translation() = o.translation_mm;
+  return G;
+}
+
+Eigen::Vector3d deform_point(const PanelOptions& options, const Eigen::Vector3d& p) {
+  return panel_rigid_motion(options) * (p + displacement(options, p));
+}
+
+Eigen::Vector3d deform_normal(const PanelOptions& options, const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+  constexpr double h = 1e-3;  // mm: the field varies over hundreds of mm, so central differences are exact to ~1e-9
+  Eigen::Matrix3d J;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(k) * h;
+    J.col(k) = (displacement(options, p + e) - displacement(options, p - e)) / (2.0 * h);
+  }
+  J += Eigen::Matrix3d::Identity();
+  return (panel_rigid_motion(options).linear() * J.inverse().transpose() * n).normalized();
+}
+
+}  // namespace conform

@@ -1,0 +1,80 @@
+#pragma once
+// `conform sicp`: deburring on a deformed part. Reads the nominal contour (CSV x_mm,y_mm,z_mm in order, or a mesh
+// whose boundary is taken), the scan of the deformed part, the nominal trajectory (CSV x_mm,y_mm,z_mm,nx,ny,nz) and
+// optionally the nominal surface around the contour; registers (registration/sicp.h) and maps the trajectory onto
+// the part by one of three models: Subdivision-ICP (blended segment transforms), one rigid transform, or the rigid
+// transform plus a smooth height field (the paper's projection model); re-estimates the tool normals from the scan.
+// Writes the compensated trajectory (same rows, same order) only when the registration converged, whole or not at
+// all. Given the ground-truth trajectory (generated data), it reports the error.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "conform/compensation/projection_model.h"
+#include "conform/compensation/trajectory.h"
+#include "conform/compensation/trajectory_error.h"
+#include "conform/core/mesh.h"
+#include "conform/core/polyline.h"
+#include "conform/core/progress.h"
+#include "conform/registration/sicp.h"
+
+namespace conform {
+
+enum class SicpModel { kSicp, kRigid, kProjection };
+const char* to_string(SicpModel model);
+
+// The part of the job that works on data in memory (what the tests and the benchmark call).
+struct SicpCompensationOptions {
+  SicpModel model = SicpModel::kSicp;
+  SicpOptions sicp;  // its scan_voxel_mm thins the scan once, for the registration and the tool normals
+  ProjectionOptions projection;
+  ToolNormalOptions normals;
+};
+
+struct SicpCompensationResult {
+  SicpModel model = SicpModel::kSicp;
+  SicpResult registration;     // coarse ICP always; segments for kSicp
+  ProjectionModel projection;  // kProjection
+  Trajectory trajectory;       // compensated, same rows as the nominal one
+  std::size_t normals_from_scan = 0;
+  bool converged = false;
+  std::string termination;
+};
+
+// surface: the nominal surface around the contour (nullptr: contour-only registration). scan: the deformed part.
+SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh* surface,
+                                             const std::vector<Eigen::Vector3d>& scan, const Trajectory& nominal,
+                                             const SicpCompensationOptions& options);
+
+struct SicpJobOptions {
+  std::string contour_path;         // .csv (x_mm,y_mm,z_mm, ordered) or a mesh (.ply .stl .obj) whose boundary is taken
+  std::string scan_path;            // cloud or mesh
+  std::string trajectory_path;      // .csv x_mm,y_mm,z_mm,nx,ny,nz
+  std::string surface_path;         // optional nominal surface mesh; a mesh contour is its own surface
+  std::string truth_path;           // optional ground-truth trajectory, same columns and rows: errors reported
+  std::string out_trajectory_path;  // optional
+  SicpCompensationOptions compensation;
+  ProgressFn progress;  // "read", the registration's stages, "normals", "write"
+  bool IsValid(std::string* error) const;
+};
+
+struct SicpJobResult {
+  SicpCompensationResult compensation;
+  std::string contour_source;  // "csv (closed)", "mesh boundary 2 of 3 (closed)"
+  std::size_t contour_points = 0;
+  double contour_length_mm = 0.0;
+  std::size_t scan_points = 0;
+  std::size_t trajectory_rows = 0;
+  std::size_t surface_faces = 0;
+  std::optional<TrajectoryError> error;  // when a truth was given
+  std::vector<std::string> warnings;
+  std::string out_trajectory_path;  // written; empty when not
+};
+
+// Throws conform::Error for bad input (files, columns, rows, a contour mesh without boundary); not converging is
+// reported in the result (compensation.converged), with no file written.
+SicpJobResult run_sicp(const SicpJobOptions& options);
+
+}  // namespace conform

@@ -1,0 +1,175 @@
+#include "conform/pipelines/sicp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "conform/core/csv.h"
+#include "conform/core/error.h"
+#include "conform/core/io.h"
+#include "conform/core/mesh_boundary.h"
+#include "conform/core/nearest_neighbors.h"
+
+namespace conform {
+namespace {
+
+const std::vector<std::string> kTrajectoryColumns = {"x_mm", "y_mm", "z_mm", "nx", "ny", "nz"};
+
+bool is_csv(const std::string& path) { return file_extension(path) == ".csv"; }
+
+// An ordered point list is closed when its last point is back near its first: a repeated first point is dropped,
+// and a gap no longer than three times the median spacing is the closing edge.
+Polyline contour_from_csv(const std::string& path) {
+  const CsvTable table = read_csv(path, {"x_mm", "y_mm", "z_mm"});
+  if (table.rows() < 3)
+    throw Error(path + ": a contour needs at least 3 points, the file has " + std::to_string(table.rows()));
+  const Eigen::MatrixXd xyz = table.numbers({"x_mm", "y_mm", "z_mm"});
+  Polyline c;
+  for (Eigen::Index i = 0; i < xyz.rows(); ++i) c.points.emplace_back(xyz(i, 0), xyz(i, 1), xyz(i, 2));
+  std::vector<double> spacing;
+  for (std::size_t i = 1; i < c.points.size(); ++i) spacing.push_back((c.points[i] - c.points[i - 1]).norm());
+  std::nth_element(spacing.begin(), spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2), spacing.end());
+  const double median = spacing[spacing.size() / 2];
+  const double gap = (c.points.back() - c.points.front()).norm();
+  if (gap <= 1e-9 * std::max(1.0, median)) c.points.pop_back();
+  c.closed = gap <= 3.0 * median;
+  return c;
+}
+
+// The boundary loop of the mesh that lies on the scan: the smallest median distance of its points to the scan.
+Polyline contour_from_mesh(const Mesh& mesh, const std::string& path, const KdTree& scan_tree, std::string* source) {
+  const std::vector<Polyline> loops = boundary_polylines(mesh);
+  if (loops.empty())
+    throw Error(path + ": the mesh has no boundary (no edge used by one triangle only) to take as the contour");
+  std::size_t best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    std::vector<float> d;
+    const std::size_t step = std::max<std::size_t>(1, loops[k].points.size() / 200);
+    for (std::size_t i = 0; i < loops[k].points.size(); i += step) {
+      float sq = 0.0f;
+      scan_tree.nearest(loops[k].points[i].cast<float>(), &sq);
+      d.push_back(sq);
+    }
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    if (d[d.size() / 2] < best_distance) best_distance = d[d.size() / 2], best = k;
+  }
+  *source = "mesh boundary " + std::to_string(best + 1) + " of " + std::to_string(loops.size());
+  return loops[best];
+}
+
+Trajectory read_trajectory(const std::string& path) {
+  const CsvTable table = read_csv(path, kTrajectoryColumns);
+  if (table.rows() == 0) throw Error(path + ": the trajectory has no rows");
+  const Eigen::MatrixXd m = table.numbers(kTrajectoryColumns);
+  Trajectory t;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    const Eigen::Vector3d n(m(i, 3), m(i, 4), m(i, 5));
+    if (std::abs(n.norm() - 1.0) > 1e-3) {
+      throw Error(path + ":" + std::to_string(table.line_numbers[static_cast<std::size_t>(i)]) +
+                  ": the tool normal (nx, ny, nz) is not of unit length (" + std::to_string(n.norm()) + ")");
+    }
+    t.points.emplace_back(m(i, 0), m(i, 1), m(i, 2));
+    t.normals.push_back(n.normalized());
+  }
+  return t;
+}
+
+void write_trajectory(const std::string& path, const Trajectory& t) {
+  CsvWriter writer(kTrajectoryColumns, 6);
+  for (std::size_t i = 0; i < t.points.size(); ++i) {
+    for (int k = 0; k < 3; ++k) writer.cell(t.points[i](k));
+    for (int k = 0; k < 3; ++k) writer.cell(t.normals[i](k));
+    writer.end_row();
+  }
+  writer.write(path);
+}
+
+std::vector<Eigen::Vector3d> points_of(const Cloud& cloud) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(cloud.size());
+  for (const pcl::PointXYZ& p : cloud.points) points.emplace_back(p.x, p.y, p.z);
+  return points;
+}
+
+}  // namespace
+
+bool SicpJobOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (contour_path.empty())
+    why = "no contour: give --contour (CSV x_mm,y_mm,z_mm or a mesh)";
+  else if (scan_path.empty())
+    why = "no scan: give --scan";
+  else if (trajectory_path.empty())
+    why = "no trajectory: give --trajectory (CSV x_mm,y_mm,z_mm,nx,ny,nz)";
+  else if (!out_trajectory_path.empty() && !is_csv(out_trajectory_path))
+    why = out_trajectory_path + ": the compensated trajectory is written as .csv";
+  else if (!compensation.sicp.IsValid(&why))
+    why = "S-ICP: " + why;
+  else if (!compensation.projection.IsValid(&why))
+    why = "projection: " + why;
+  else if (!compensation.normals.IsValid(&why))
+    why = "tool normals: " + why;
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+SicpJobResult run_sicp(const SicpJobOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  SicpJobResult result;
+  report(options.progress, "read", 0.0);
+  ReadOptions read;
+  read.non_finite = NonFinitePolicy::kDrop;
+  ReadReport scan_report;
+  const std::vector<Eigen::Vector3d> scan = points_of(read_cloud(options.scan_path, read, &scan_report));
+  for (const std::string& w : scan_report.warnings) result.warnings.push_back(w);
+  if (scan.empty()) throw Error(options.scan_path + ": the scan has no points");
+  result.scan_points = scan.size();
+  const Trajectory nominal = read_trajectory(options.trajectory_path);
+  result.trajectory_rows = nominal.points.size();
+  Mesh surface;
+  bool has_surface = false;
+  if (!options.surface_path.empty()) {
+    surface = read_geometry(options.surface_path, read);
+    has_surface = true;
+  }
+  Polyline contour;
+  if (is_csv(options.contour_path)) {
+    contour = contour_from_csv(options.contour_path);
+    result.contour_source = "csv";
+  } else {
+    const Mesh mesh = read_mesh(options.contour_path, read);
+    contour = contour_from_mesh(mesh, options.contour_path, KdTree(scan), &result.contour_source);
+    if (!has_surface) surface = mesh, has_surface = true;
+  }
+  result.contour_source += contour.closed ? " (closed)" : " (open)";
+  result.contour_points = contour.points.size();
+  result.contour_length_mm = length(contour);
+  result.surface_faces = surface.faces.size();
+  std::optional<Trajectory> truth;
+  if (!options.truth_path.empty()) {
+    truth = read_trajectory(options.truth_path);
+    if (truth->points.size() != nominal.points.size()) {
+      throw Error(options.truth_path + ": " + std::to_string(truth->points.size()) + " rows, the trajectory has " +
+                  std::to_string(nominal.points.size()));
+    }
+  }
+  report(options.progress, "read", 1.0);
+
+  SicpCompensationOptions compensation = options.compensation;
+  compensation.sicp.progress = options.progress;
+  result.compensation = compensate_trajectory(contour, has_surface ? &surface : nullptr, scan, nominal, compensation);
+  for (const std::string& w : result.compensation.registration.warnings) result.warnings.push_back(w);
+  if (truth) result.error = trajectory_error(result.compensation.trajectory, *truth, nominal);
+  if (result.compensation.converged && !options.out_trajectory_path.empty()) {
+    report(options.progress, "write", 0.0);
+    write_trajectory(options.out_trajectory_path, result.compensation.trajectory);
+    result.out_trajectory_path = options.out_trajectory_path;
+    report(options.progress, "write", 1.0);
+  }
+  return result;
+}
+
+}  // namespace conform

@@ -1,0 +1,66 @@
+#include <memory>
+
+#include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
+#include "conform/pipelines/sicp.h"
+#include "conform/registration/downsample.h"
+
+namespace conform {
+
+const char* to_string(SicpModel model) {
+  switch (model) {
+    case SicpModel::kRigid:
+      return "rigid";
+    case SicpModel::kProjection:
+      return "projection";
+    default:
+      return "sicp";
+  }
+}
+
+SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh* surface,
+                                             const std::vector<Eigen::Vector3d>& scan, const Trajectory& nominal,
+                                             const SicpCompensationOptions& options) {
+  check_trajectory(nominal, "trajectory");
+  SicpCompensationResult r;
+  r.model = options.model;
+  const double voxel = options.sicp.scan_voxel_mm;
+  const std::vector<Eigen::Vector3d> thin = voxel > 0.0 ? voxel_downsample(scan, voxel) : scan;
+  SicpOptions sicp = options.sicp;
+  sicp.scan_voxel_mm = 0.0;  // thinned already
+  sicp.rigid_only = options.model != SicpModel::kSicp;
+  std::unique_ptr<IcpReference> reference;
+  if (surface != nullptr) reference = std::make_unique<IcpReference>(*surface);
+  r.registration = sicp_register(contour, reference.get(), thin, sicp);
+  r.registration.scan_points_used = thin.size();
+  r.converged = r.registration.converged;
+  r.termination = r.registration.termination;
+  switch (options.model) {
+    case SicpModel::kSicp: {
+      std::vector<Eigen::Isometry3d> transforms;
+      for (const SicpSegmentFit& f : r.registration.segments) transforms.push_back(f.T_scan_nominal);
+      r.trajectory = map_by_segments(nominal, contour, r.registration.segmentation, transforms);
+      break;
+    }
+    case SicpModel::kRigid:
+      r.trajectory = map_rigidly(nominal, r.registration.T_scan_nominal_rigid);
+      break;
+    case SicpModel::kProjection: {
+      if (reference == nullptr) throw Error("the projection model needs the nominal surface (--surface)");
+      r.projection =
+          fit_projection_model(contour, *reference, thin, r.registration.T_scan_nominal_rigid, options.projection);
+      for (std::size_t i = 0; i < nominal.points.size(); ++i) {
+        r.trajectory.points.push_back(r.projection.map_point(nominal.points[i]));
+        r.trajectory.normals.push_back(r.projection.map_normal(nominal.points[i], nominal.normals[i]));
+      }
+      break;
+    }
+  }
+  if (options.normals.from_scan && !thin.empty()) {
+    const KdTree tree(thin);
+    r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
+  }
+  return r;
+}
+
+}  // namespace conform

@@ -1,0 +1,214 @@
+#include "conform/registration/sicp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
+#include "conform/registration/downsample.h"
+#include "conform/registration/sicp_pairs.h"
+#include "sicp_selection.h"
+
+namespace conform {
+namespace {
+
+IcpOptions icp_options(const SicpOptions& o, bool surface, double max_distance_mm) {
+  IcpOptions icp;
+  icp.method = surface ? IcpMethod::kPointToSurface : IcpMethod::kPointToPoint;
+  icp.max_correspondence_distance_mm = max_distance_mm;
+  icp.max_iterations = o.max_iterations;
+  icp.kernel = RobustKernel::kHuber;
+  icp.coarse_points = 0;
+  // A micrometre is far below the scan's noise; tighter tolerances only add iterations over small segments.
+  icp.translation_tolerance_mm = 1e-3;
+  icp.rotation_tolerance_rad = 1e-5;
+  icp.min_inlier_fraction = 0.0;
+  return icp;
+}
+
+Cloud to_cloud(const std::vector<Eigen::Vector3d>& points) {
+  Cloud cloud;
+  for (const Eigen::Vector3d& p : points) {
+    cloud.points.push_back(
+        pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
+  }
+  return cloud;
+}
+
+// RMS of the pairs of T_nominal_scan * points with the nominal surface within max_distance; 0 without pairs.
+double pair_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T_nominal_scan,
+                const IcpReference& nominal, double max_distance_mm, double* sum_sq, std::size_t* count) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d x = T_nominal_scan * p;
+    const ReferencePoint r = closest_on_reference(nominal, x, max_distance_mm);
+    if (!r.found) continue;
+    const double d = r.normal.dot(x - r.point);
+    sum += d * d;
+    ++n;
+  }
+  *sum_sq += sum;
+  *count += n;
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
+// The segment ICPs, in parallel (each is independent, so the result does not depend on the thread count).
+void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
+                  const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
+  const auto count = static_cast<std::ptrdiff_t>(fits.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const std::vector<Eigen::Vector3d>& points = selection.segment_points[static_cast<std::size_t>(k)];
+    SicpSegmentFit& fit = fits[static_cast<std::size_t>(k)];
+    fit.neighbourhood_points = selection.neighbourhood_counts[static_cast<std::size_t>(k)];
+    fit.stability_points = points.size() - fit.neighbourhood_points;
+    if (points.size() < 6) continue;  // too little scan: the joint refinement ties it to its neighbours
+    fit.icp = icp(points, reference, T_start, icp_options(o, surface, o.max_distance_mm));
+    fit.converged = fit.icp.converged;
+  }
+}
+
+// The rigid ICP of the contour's neighbourhood: first with the coarse pair distance over a neighbourhood widened by
+// it (the scan is only roughly in place), then with the fine distance over the neighbourhood at the pose found.
+Eigen::Isometry3d coarse_fit(const Polyline& contour, const detail::ContourLocator& locator,
+                             const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference, bool surface,
+                             const SicpOptions& o, IcpResult& coarse) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  const double distances[2] = {o.coarse_max_distance_mm, o.max_distance_mm};
+  const double widths[2] = {o.neighbourhood_mm + o.coarse_max_distance_mm, o.neighbourhood_mm};
+  for (int pass = 0; pass < 2; ++pass) {
+    // Ten candidates per point kept leave enough after the neighbourhood test, at a tenth of the searches.
+    const std::vector<Eigen::Vector3d> moving = stride_downsample(
+        surface ? locator.near_contour(stride_downsample(scan, 10 * o.coarse_points), T, widths[pass]) : contour.points,
+        o.coarse_points);
+    if (moving.size() < 6) {
+      throw Error("S-ICP: fewer than 6 scan points lie within " + std::to_string(widths[pass]) +
+                  " mm of the contour: is the scan in place (same frame and units as the contour)?");
+    }
+    IcpOptions options = icp_options(o, surface, distances[pass]);
+    if (surface && pass == 0) options.method = IcpMethod::kPointToPlane;
+    coarse = icp(moving, reference, T, options);
+    T = coarse.T_ref_scan;
+  }
+  return T;
+}
+
+}  // namespace
+
+bool SicpOptions::IsValid(std::string* error) const {
+  std::string why;
+  const auto fail = [&](const std::string& message) {
+    if (error != nullptr) *error = message;
+    return false;
+  };
+  if (!segmentation.IsValid(&why)) return fail(why);
+  if (joint_refinement && !joint.IsValid(&why)) return fail(why);
+  if (!std::isfinite(scan_voxel_mm) || scan_voxel_mm < 0.0) return fail("scan voxel must be >= 0 mm");
+  if (!std::isfinite(neighbourhood_mm) || neighbourhood_mm <= 0.0) return fail("neighbourhood must be > 0 mm");
+  if (!std::isfinite(stability_mm) || stability_mm < neighbourhood_mm)
+    return fail("stability distance must be >= the neighbourhood distance");
+  if (!std::isfinite(coarse_max_distance_mm) || coarse_max_distance_mm <= 0.0)
+    return fail("coarse maximum distance must be > 0 mm");
+  if (!std::isfinite(max_distance_mm) || max_distance_mm <= 0.0) return fail("maximum distance must be > 0 mm");
+  if (points_per_segment < 6) return fail("points per segment must be >= 6");
+  if (coarse_points < 6) return fail("coarse points must be >= 6");
+  if (max_iterations < 1) return fail("ICP iterations must be >= 1");
+  return true;
+}
+
+SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_surface,
+                         const std::vector<Eigen::Vector3d>& scan, const SicpOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("S-ICP options: " + why);
+  if (scan.empty()) throw Error("S-ICP: the scan has no points");
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan[i].allFinite()) throw Error("S-ICP: scan point " + std::to_string(i) + " is not finite");
+  }
+  SicpResult result;
+  result.segmentation = segment_contour(contour, options.segmentation);
+  const std::vector<Eigen::Vector3d> thin =
+      options.scan_voxel_mm > 0.0 ? voxel_downsample(scan, options.scan_voxel_mm) : scan;
+  result.scan_points_used = thin.size();
+  const bool surface = nominal_surface != nullptr;
+  // Without a surface the contour moves onto the scan (the paper's direction); with one, the scan onto the surface.
+  std::unique_ptr<IcpReference> scan_reference;
+  if (!surface) scan_reference = std::make_unique<IcpReference>(to_cloud(thin));
+  const IcpReference& reference = surface ? *nominal_surface : *scan_reference;
+  const detail::ContourLocator locator(contour, result.segmentation);
+
+  report(options.progress, "sicp: coarse", 0.0);
+  // Nominal <- scan with a surface, scan <- nominal without.
+  const Eigen::Isometry3d T = coarse_fit(contour, locator, thin, reference, surface, options, result.coarse);
+  result.T_scan_nominal_rigid = surface ? T.inverse() : T;
+  report(options.progress, "sicp: coarse", 1.0);
+  result.converged = result.coarse.converged;
+  result.termination =
+      result.coarse.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
+  result.rms_mm = result.coarse.rms_mm;
+  if (options.rigid_only) return result;
+
+  report(options.progress, "sicp: segments", 0.0);
+  // Each segment keeps at most points_per_segment + stability_points_per_segment; four times that many candidates in
+  // all are plenty (a segment's share of the scan is about its share of the contour).
+  const std::size_t candidates =
+      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
+  const detail::SicpSelection selection = surface ? locator.select_scan(stride_downsample(thin, candidates), T, options)
+                                                  : locator.select_contour(contour, options);
+  result.segments.resize(result.segmentation.segments.size());
+  fit_segments(selection, reference, surface, T, options, result.segments);
+  std::vector<Eigen::Isometry3d> transforms;
+  for (std::size_t k = 0; k < result.segments.size(); ++k) {
+    const SicpSegmentFit& f = result.segments[k];
+    // A fit stopped by the iteration limit is still closer than the coarse pose; a failed one is not.
+    const bool usable = f.converged || f.icp.termination == IcpTermination::kMaxIterations;
+    transforms.push_back(usable ? f.icp.T_ref_scan : T);
+    if (!f.converged) {
+      result.warnings.push_back(
+          "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
+          " neighbourhood points, its ICP " +
+          (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
+          (usable ? "; its last pose is kept and" : "; it starts from the rigid pose and") +
+          " the joint refinement ties it to its neighbours");
+    }
+  }
+  report(options.progress, "sicp: segments", 1.0);
+
+  if (surface && options.joint_refinement) {
+    report(options.progress, "sicp: joint", 0.0);
+    std::vector<SicpJointSegment> data(transforms.size());
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      data[k].points = stride_downsample(selection.segment_points[k], options.joint.points_per_segment);
+    }
+    result.joint = refine_segments_jointly(data, locator.junctions(options.joint.points_per_overlap), reference,
+                                           options.max_distance_mm, options.joint, transforms);
+    if (!result.joint.usable && result.converged) {
+      result.converged = false;
+      result.termination = "joint refinement: " + result.joint.termination;
+    }
+    report(options.progress, "sicp: joint", 1.0);
+  } else {
+    result.joint.termination = surface ? "off" : "needs a nominal surface";
+  }
+
+  double sum_sq = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < transforms.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    if (surface) {
+      f.T_scan_nominal = transforms[k].inverse();
+      f.rms_mm =
+          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
+    } else {
+      f.T_scan_nominal = transforms[k];
+      f.rms_mm = f.icp.rms_mm;
+      sum_sq += f.rms_mm * f.rms_mm * static_cast<double>(f.icp.inliers);
+      count += f.icp.inliers;
+    }
+  }
+  result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+  return result;
+}
+
+}  // namespace conform

@@ -1,0 +1,102 @@
+// `conform sicp` end to end on a small generated plate (small enough for sanitizer builds): exit 0, --json with "segments", "rms_mm" per segment and
+// overall, "converged"; the output trajectory has the input's rows in order; the same bytes on a rerun; a mesh
+// contour (its boundary on the scan); exit code 2 and no output for bad input.
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace conform {
+namespace {
+
+class SicpCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto r = test::run(CONFORM_EXE, {"generate", "plate", "--out", dir_.file("p.ply"), "--scan-points", "8000",
+                                           "--contour-spacing", "2", "--surface-edge", "4", "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  test::RunResult sicp(std::vector<std::string> args, const std::string& trajectory = "p.trajectory.csv") {
+    args.insert(args.begin(), {"sicp", "--contour", dir_.file("p.contour.csv"), "--scan", dir_.file("p.ply"),
+                               "--trajectory", dir_.file(trajectory), "--quiet"});
+    return test::run(CONFORM_EXE, args);
+  }
+  std::size_t rows(const std::string& path) {
+    std::istringstream in(test::read_bytes(path));
+    std::size_t n = 0;
+    for (std::string line; std::getline(in, line);) ++n;
+    return n - 1;  // the header
+  }
+  test::TempDir dir_;
+};
+
+TEST_F(SicpCommandTest, JsonAndTrajectory) {
+  const auto r = sicp({"--surface", dir_.file("p.nominal.ply"), "--truth", dir_.file("p.truth.csv"), "--out-trajectory",
+                       dir_.file("out.csv"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_EQ(j["model"], "sicp");
+  ASSERT_GT(j["segments"].size(), 20u);  // ~1015 mm in segments of at most 40 mm
+  for (const auto& s : j["segments"]) EXPECT_LT(s["rms_mm"].get<double>(), 0.2);
+  EXPECT_LT(j["rms_mm"].get<double>(), 0.1);
+  EXPECT_LT(j["error"]["path_mean_mm"].get<double>(), 0.1);  // noise 0.05 mm; measured ~0.03
+  EXPECT_EQ(rows(dir_.file("out.csv")), rows(dir_.file("p.trajectory.csv")));
+  EXPECT_EQ(test::read_bytes(dir_.file("out.csv")).substr(0, 24), "x_mm,y_mm,z_mm,nx,ny,nz\n");
+  const auto again = sicp({"--surface", dir_.file("p.nominal.ply"), "--out-trajectory", dir_.file("again.csv")});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(test::read_bytes(dir_.file("again.csv")), test::read_bytes(dir_.file("out.csv")));
+}
+
+TEST_F(SicpCommandTest, RigidProjectionAndMeshContour) {
+  for (const char* model : {"projection"}) {  // rigid runs inside it
+    const auto r = sicp({"--surface", dir_.file("p.nominal.ply"), "--model", model, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["model"], model);
+    EXPECT_EQ(j["segments"].size(), 0u);
+  }
+  // The nominal mesh as the contour: its boundary loop on the scan (the flank's bottom edge) and its own surface.
+  auto args = std::vector<std::string>{"sicp",
+                                       "--contour",
+                                       dir_.file("p.nominal.ply"),
+                                       "--scan",
+                                       dir_.file("p.ply"),
+                                       "--trajectory",
+                                       dir_.file("p.trajectory.csv"),
+                                       "--quiet",
+                                       "--json"};
+  const auto r = test::run(CONFORM_EXE, args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  // Two loops: the band's outer rim and the flank's bottom edge; the one on the scan is taken.
+  EXPECT_EQ(j["contour_source"].get<std::string>().substr(0, 13), "mesh boundary");
+  EXPECT_NE(j["contour_source"].get<std::string>().find("of 2 (closed)"), std::string::npos);
+  EXPECT_EQ(j["converged"], true);
+}
+
+TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
+  test::write_bytes(dir_.file("bad.csv"), "x_mm,y_mm,z_mm,nx,ny,nz\n1,2,3,0,0,2\n");
+  const auto bad_normal = sicp({"--out-trajectory", dir_.file("o.csv")}, "bad.csv");
+  EXPECT_EQ(bad_normal.exit_code, 2);
+  EXPECT_NE(bad_normal.err.find("bad.csv:2"), std::string::npos) << bad_normal.err;
+  test::write_bytes(dir_.file("nocol.csv"), "x,y,z\n1,2,3\n");
+  const auto no_column = sicp({"--out-trajectory", dir_.file("o.csv")}, "nocol.csv");
+  EXPECT_EQ(no_column.exit_code, 2);
+  EXPECT_NE(no_column.err.find("nocol.csv"), std::string::npos);
+  const auto no_surface = sicp({"--surface", dir_.file("missing.ply"), "--out-trajectory", dir_.file("o.csv")});
+  EXPECT_EQ(no_surface.exit_code, 2);
+  EXPECT_NE(no_surface.err.find("missing.ply"), std::string::npos);
+  EXPECT_EQ(sicp({"--model", "spline"}).exit_code, 2);
+  EXPECT_EQ(sicp({"--overlap", "1.5", "--out-trajectory", dir_.file("o.csv")}).exit_code, 2);
+  EXPECT_TRUE(test::read_bytes(dir_.file("o.csv")).empty());
+}
+
+}  // namespace
+}  // namespace conform

@@ -1,0 +1,94 @@
+// Generated panels: the contour lies on the nominal surface at the opening's edge and has the asked spacing; the
+// truth is the known deformation of the trajectory; the scan lies on the deformed surface within its noise; missing
+// arcs remove points; the same seed gives the same data; bad options throw.
+
+#include "conform/datasets/panel.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "conform/core/error.h"
+#include "conform/core/mesh_boundary.h"
+#include "conform/datasets/panel_shape.h"
+
+namespace conform {
+namespace {
+
+PanelOptions small(PanelShape shape) {
+  PanelOptions o;
+  o.shape = shape;
+  o.scan_points = 20000;
+  o.contour_spacing_mm = 1.0;
+  o.surface_edge_mm = 4.0;
+  return o;
+}
+
+TEST(Panel, PlateContourTrajectoryAndTruth) {
+  const PanelOptions o = small(PanelShape::kPlate);
+  const PanelData d = generate_panel(o);
+  // Ellipse 190 x 130 mm on a gently curved plate: Ramanujan's perimeter 1013.3 mm, 0.2% longer for the slope.
+  EXPECT_NEAR(d.perimeter_mm, 1013.3, 3.0);
+  EXPECT_EQ(d.contour.points.size(), static_cast<std::size_t>(std::lround(d.perimeter_mm)));
+  EXPECT_TRUE(d.contour.closed);
+  for (const Eigen::Vector3d& p : d.contour.points) {  // on z = x^2/2Rx + y^2/2Ry (exact formula)
+    EXPECT_NEAR(p.z(), p.x() * p.x() / 5000.0 + p.y() * p.y() / 8000.0, 1e-9);
+  }
+  ASSERT_EQ(d.truth.points.size(), d.trajectory.points.size());
+  for (std::size_t i = 0; i < d.trajectory.points.size(); i += 50) {
+    EXPECT_LT((d.truth.points[i] - deform_point(o, d.trajectory.points[i])).norm(), 1e-12);
+    EXPECT_NEAR(d.truth.normals[i].norm(), 1.0, 1e-12);
+  }
+  // The surface mesh's boundary: the opening's flank bottom and the band's outer rim, both closed.
+  const std::vector<Polyline> loops = boundary_polylines(d.surface);
+  EXPECT_EQ(loops.size(), 2u);
+}
+
+TEST(Panel, ZeroDeformationLeavesTheTruthNominal) {
+  PanelOptions o = small(PanelShape::kNoseCone);
+  o.ovality_mm = o.droop_mm = 0.0;
+  o.rotation_deg.setZero();
+  o.translation_mm.setZero();
+  o.noise_mm = 0.0;
+  const PanelData d = generate_panel(o);
+  for (std::size_t i = 0; i < d.truth.points.size(); ++i) {
+    EXPECT_LT((d.truth.points[i] - d.trajectory.points[i]).norm(), 1e-12);
+    EXPECT_LT((d.truth.normals[i] - d.trajectory.normals[i]).norm(), 1e-9);
+  }
+  // Without noise the scan lies on the barrel (r = 1000 mm) or on the flank (r in [996, 1000]); float storage.
+  for (const pcl::PointXYZ& p : d.scan.points) {
+    const double r = std::hypot(static_cast<double>(p.y), static_cast<double>(p.z));
+    EXPECT_GE(r, 996.0 - 1e-3);
+    EXPECT_LE(r, 1000.0 + 1e-3);
+  }
+}
+
+TEST(Panel, NoseConeScanNoiseMissingArcsAndDeterminism) {
+  PanelOptions o = small(PanelShape::kNoseCone);
+  const PanelData full = generate_panel(o);
+  EXPECT_EQ(full.scan.size(), 20000u);
+  o.missing_fraction = 0.2;
+  const PanelData missing = generate_panel(o);
+  EXPECT_EQ(missing.missing_arcs.size(), 4u);
+  // 20% of the edge's length, over 15 of the band's 40 mm plus the 4 mm flank, of 44 mm in all: 8.6% of the points;
+  // +-1.5% for the mesh rows (4 mm) that decide where a missing arc ends across the band.
+  EXPECT_NEAR(static_cast<double>(missing.scan_points_removed) / 20000.0, 0.086, 0.015);
+  const PanelData again = generate_panel(o);
+  ASSERT_EQ(again.scan.size(), missing.scan.size());
+  for (std::size_t i = 0; i < again.scan.size(); ++i) EXPECT_EQ(again.scan.points[i].x, missing.scan.points[i].x);
+}
+
+TEST(Panel, BadOptionsThrow) {
+  PanelOptions o = small(PanelShape::kNoseCone);
+  o.corner_radius_mm = 500.0;
+  EXPECT_THROW(generate_panel(o), Error);
+  o = small(PanelShape::kPlate);
+  o.surface_edge_mm = 0.0;
+  EXPECT_THROW(generate_panel(o), Error);
+  o = small(PanelShape::kPlate);
+  o.missing_fraction = 0.95;
+  EXPECT_THROW(generate_panel(o), Error);
+}
+
+}  // namespace
+}  // namespace conform
