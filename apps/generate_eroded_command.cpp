@@ -1,14 +1,12 @@
 // `conform generate eroded`: a synthetic eroded turbine-blade surface with craters, as grid files with the reference
 // grid and the ground-truth rims beside it (pipelines/generate_eroded.h).
 
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_eroded.h"
 #include "terminal.h"
@@ -18,17 +16,7 @@ namespace {
 
 // "X,Y,RADIUS,DEPTH" -> a crater; conform::Error naming the flag otherwise.
 Crater parse_crater(const std::string& text) {
-  std::vector<double> v;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    char* end = nullptr;
-    const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x)) {
-      throw Error("--crater " + text + ": '" + item + "' is not a number; expected X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
-    }
-    v.push_back(x);
-  }
-  if (v.size() != 4) throw Error("--crater " + text + ": expected 4 comma-separated numbers X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
+  const std::vector<double> v = parse_numbers(text, 4, "--crater", "X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
   return {v[0], v[1], v[2], v[3]};
 }
 

@@ -4,12 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube.h"
 #include "json_values.h"
@@ -20,26 +19,6 @@ namespace {
 
 // deg / 180 first, so that 90 deg is exactly pi / 2.
 double radians(double deg) { return deg / 180.0 * M_PI; }
-
-// "1,2.5,-3" -> {1, 2.5, -3}; exactly `count` finite numbers or conform::Error naming the flag.
-std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& flag,
-                                  const std::string& shape) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error(flag + " " + text + ": '" + item + "' is not a number; expected " + shape);
-    }
-    values.push_back(v);
-  }
-  if (values.size() != count) {
-    throw Error(flag + " " + text + ": expected " + std::to_string(count) + " comma-separated numbers, " + shape);
-  }
-  return values;
-}
 
 Eigen::Vector3d parse_vector(const std::string& text, const std::string& flag) {
   const std::vector<double> v = parse_numbers(text, 3, flag, "x,y,z");

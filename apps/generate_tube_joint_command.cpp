@@ -1,15 +1,13 @@
 // `conform generate tube-joint`: a posed leg + stub scan pair with the ground-truth intersection curve
 // (pipelines/generate_tube_joint.h), the input `conform tube-joint` expects.
 
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube_joint.h"
 #include "terminal.h"
@@ -21,19 +19,7 @@ constexpr double kPi = 3.141592653589793;
 double radians(double deg) { return deg / 180.0 * kPi; }
 
 std::vector<double> parse_bump(const std::string& text, const std::string& flag) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error(flag + " " + text + ": '" + item + "' is not a number; expected AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM");
-    }
-    values.push_back(v);
-  }
-  if (values.size() != 4) throw Error(flag + " " + text + ": expected 4 numbers AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM");
-  return values;
+  return parse_numbers(text, 4, flag, "AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM");
 }
 
 class GenerateTubeJointCommand : public Command {

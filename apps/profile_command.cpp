@@ -2,13 +2,12 @@
 // edge (Chen et al., LNG profiles; beyond the paper: spline edge model chosen by residual, local web direction from a
 // second edge, per-feature comparison with the cubic model).
 
-#include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/profile.h"
 #include "terminal.h"
@@ -18,18 +17,7 @@ namespace {
 
 // "0,0,1" -> a finite non-zero vector, or conform::Error naming the flag.
 Eigen::Vector3d parse_web_normal(const std::string& text) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error("--web-normal " + text + ": '" + item + "' is not a number; expected x,y,z");
-    }
-    values.push_back(v);
-  }
-  if (values.size() != 3) throw Error("--web-normal " + text + ": expected 3 comma-separated numbers, x,y,z");
+  const std::vector<double> values = parse_numbers(text, 3, "--web-normal", "x,y,z");
   const Eigen::Vector3d z(values[0], values[1], values[2]);
   if (!(z.norm() > 0.0)) throw Error("--web-normal " + text + ": the web normal must not be zero");
   return z;

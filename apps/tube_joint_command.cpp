@@ -1,13 +1,12 @@
 // `conform tube-joint`: cutting and welding paths for a tubular joint from a leg scan (outer surface, leg frame) and
 // a stub scan (inner surface, stub frame) — Lind & Ystgaard (2020), pipelines/tube_joint.h.
 
-#include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/tube_joint.h"
 #include "terminal.h"
@@ -20,20 +19,8 @@ double radians(double deg) { return deg / 180.0 * kPi; }
 double degrees(double rad) { return rad / kPi * 180.0; }
 
 std::array<double, 4> parse_groove(const std::string& text) {
-  std::array<double, 4> values{};
-  std::stringstream in(text);
-  std::string item;
-  std::size_t count = 0;
-  while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (count >= 4 || item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error("--groove-deg " + text + ": expected 4 numbers toe,side,heel,side in degrees");
-    }
-    values[count++] = radians(v);
-  }
-  if (count != 4) throw Error("--groove-deg " + text + ": expected 4 numbers toe,side,heel,side in degrees");
-  return values;
+  const std::vector<double> v = parse_numbers(text, 4, "--groove-deg", "toe,side,heel,side in degrees");
+  return {radians(v[0]), radians(v[1]), radians(v[2]), radians(v[3])};
 }
 
 class TubeJointCommand : public Command {
