@@ -1,28 +1,15 @@
 #include "conform/pipelines/saddle.h"
 
-#include <cstdio>
 #include <string>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/csv.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
 constexpr double kHalfPi = 1.5707963267948966;
-
-// Fixed decimals; a value that rounds to zero is written without a sign, so that -1e-15 and 1e-15 give the same bytes.
-void append_fixed(std::string* out, double value, int decimals) {
-  char buffer[64];
-  const int n = std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  const char* text = buffer;
-  if (buffer[0] == '-') {
-    bool all_zero = true;
-    for (int i = 1; i < n; ++i) all_zero = all_zero && (buffer[i] == '0' || buffer[i] == '.');
-    if (all_zero) text = buffer + 1;
-  }
-  out->append(text);
-}
 
 }  // namespace
 
@@ -40,15 +27,15 @@ std::string saddle_csv(const SaddleResult& result) {
     const SaddlePoint& point = result.points[i];
     csv += std::to_string(i);
     csv += ',';
-    append_fixed(&csv, point.theta_rad, kRadDecimals);
+    csv += format_fixed(point.theta_rad, kRadDecimals);
     for (int axis = 0; axis < 3; ++axis) {
       csv += ',';
-      append_fixed(&csv, point.position[axis], kMmDecimals);
+      csv += format_fixed(point.position[axis], kMmDecimals);
     }
     csv += ',';
-    append_fixed(&csv, point.pose_rad, kRadDecimals);
+    csv += format_fixed(point.pose_rad, kRadDecimals);
     csv += ',';
-    append_fixed(&csv, point.step_mm, kMmDecimals);
+    csv += format_fixed(point.step_mm, kMmDecimals);
     csv += '\n';
   }
   return csv;

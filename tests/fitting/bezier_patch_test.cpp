@@ -8,20 +8,13 @@
 
 #include "conform/fitting/bezier_network.h"
 #include "conform/fitting/surface_grid.h"
+#include "wavy_grid.h"
 
 namespace conform {
 namespace {
 
-Eigen::Vector3d wavy(double x, double y) { return {x, y, 3.0 * std::sin(0.1 * x) * std::cos(0.13 * y) + 0.01 * x * y}; }
-
-SurfaceGrid wavy_grid(int rows, int cols) {
-  SurfaceGrid grid;
-  grid.rows = rows, grid.cols = cols;
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) grid.points.push_back(wavy(2.5 * c, 2.0 * r));
-  }
-  return grid;
-}
+using test::wavy;
+using test::wavy_grid;
 
 TEST(BezierPatch, SubdivisionReproducesTheSurface) {
   const BezierPatch patch = BezierNetwork(wavy_grid(5, 5)).patch(1, 2);
