@@ -84,15 +84,15 @@ class AlignCommand : public Command {
     c.add_option("--init", init_,
                  "Coarse placement: none (the scan is roughly in place), pca (principal axes, all sign choices "
                  "tried), fpfh (FPFH features + RANSAC; partial overlap) or pairs:FILE (>= 3 point pairs, one per "
-                 "line: scan x y z reference x y z); default none");
+                 "line: scan x y z reference x y z)");
     c.add_option("--max-distance", options_.max_distance_mm,
                  "Pairs farther apart are ignored, mm; default 10% of the reference's bounding-box diagonal");
     c.add_option("--overlap", options_.overlap,
-                 "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed; default 1");
-    c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most; default 50");
+                 "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed");
+    c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");
     c.add_option("--units", units_,
                  "Units of both input files and the pairs file (mm, cm, m, in); outputs are in "
-                 "mm; default mm");
+                 "mm");
     c.add_option("--out-transform", options_.out_transform_path,
                  "Write T_ref_scan (4x4 row-major text, mm) when converged");
     c.add_option("--out-aligned", options_.out_aligned_path,

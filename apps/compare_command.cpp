@@ -44,7 +44,7 @@ class CompareCommand : public Command {
                  "(blue below, green within tolerance, red above)");
     c.add_option("--out-histogram", options_.out_histogram_path,
                  "Write a histogram of the deviations as .png, the tolerance band marked");
-    c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm; default mm");
+    c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

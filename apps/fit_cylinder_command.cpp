@@ -29,14 +29,14 @@ class FitCylinderCommand : public Command {
         ->required();
     c.add_option("--threshold", options_.fit.threshold_mm,
                  "Inlier distance to the surface, mm; default 0 = automatic (3 noise sigmas, estimated)");
-    c.add_option("--min-radius", options_.fit.min_radius_mm, "Smallest radius accepted, mm; default 0");
-    max_radius_ = c.add_option("--max-radius", max_radius_mm_, "Largest radius accepted, mm; default none");
-    c.add_option("--axis", axis_, "Expected axis direction x y z (any length, either sign); default none")->expected(3);
-    c.add_option("--axis-tolerance-deg", axis_tolerance_deg_, "Largest angle of the axis from --axis, deg; default 10");
+    c.add_option("--min-radius", options_.fit.min_radius_mm, "Smallest radius accepted, mm");
+    max_radius_ = c.add_option("--max-radius", max_radius_mm_, "Largest radius accepted, mm; 0: none");
+    c.add_option("--axis", axis_, "Expected axis direction x y z (any length, either sign)")->expected(3);
+    c.add_option("--axis-tolerance-deg", axis_tolerance_deg_, "Largest angle of the axis from --axis, deg");
     c.add_option("--normals-k", options_.fit.normal_neighbors,
-                 "Neighbours of the PCA normals when the file has none; default 16");
-    c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws; default 1");
-    c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier; default none");
+                 "Neighbours of the PCA normals when the file has none");
+    c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
+    c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }

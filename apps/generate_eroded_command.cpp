@@ -26,17 +26,17 @@ class GenerateErodedCommand : public Command {
     c.add_option("--out", out_, "Eroded grid CSV to write (row,col,x_mm,y_mm,z_mm); the reference grid goes to "
                                 "<name>.reference.csv, the rims to <name>.rims.csv; required")
         ->required();
-    c.add_option("--rows", o_.rows, "Grid rows (along y); default 41");
-    c.add_option("--cols", o_.cols, "Grid columns (along x); default 61");
-    c.add_option("--length", o_.length_mm, "Extent along x (chord), mm; default 120");
-    c.add_option("--width", o_.width_mm, "Extent along y (span), mm; default 80");
-    c.add_option("--chord-radius", o_.chord_radius_mm, "Curvature radius along x, mm; default 150");
-    c.add_option("--span-radius", o_.span_radius_mm, "Curvature radius along y, mm; default 400");
-    c.add_option("--twist", o_.twist_per_mm, "Twist: z += twist * x * y, 1/mm; default 0.002");
+    c.add_option("--rows", o_.rows, "Grid rows (along y)");
+    c.add_option("--cols", o_.cols, "Grid columns (along x)");
+    c.add_option("--length", o_.length_mm, "Extent along x (chord), mm");
+    c.add_option("--width", o_.width_mm, "Extent along y (span), mm");
+    c.add_option("--chord-radius", o_.chord_radius_mm, "Curvature radius along x, mm");
+    c.add_option("--span-radius", o_.span_radius_mm, "Curvature radius along y, mm");
+    c.add_option("--twist", o_.twist_per_mm, "Twist: z += twist * x * y, 1/mm");
     c.add_option("--crater", craters_,
                  "Crater X_MM,Y_MM,RADIUS_MM,DEPTH_MM (repeatable); default one at 0,0 of radius 15 mm, depth 2 mm");
-    c.add_option("--noise", o_.noise_mm, "Noise of the eroded grid along z (1 sigma), mm; default 0.01");
-    c.add_option("--seed", seed_, "Seed of the noise; default 1");
+    c.add_option("--noise", o_.noise_mm, "Noise of the eroded grid along z (1 sigma), mm");
+    c.add_option("--seed", seed_, "Seed of the noise");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

@@ -28,21 +28,21 @@ class GeneratePanelCommand : public Command {
       configure_nosecone(c);
     }
     c.add_option("--band", o_.band_mm,
-                 "Nominal surface and scan: the panel within this of the opening, mm; default 40");
-    c.add_option("--thickness", o_.thickness_mm, "Depth of the opening's flank (the panel's edge), mm; default 4");
-    c.add_option("--surface-edge", o_.surface_edge_mm, "Edge length of the nominal surface mesh, mm; default 2");
-    c.add_option("--contour-spacing", o_.contour_spacing_mm, "Between contour points, mm; default 0.24");
-    c.add_option("--trajectory-spacing", o_.trajectory_spacing_mm, "Between trajectory points, mm; default 1");
+                 "Nominal surface and scan: the panel within this of the opening, mm");
+    c.add_option("--thickness", o_.thickness_mm, "Depth of the opening's flank (the panel's edge), mm");
+    c.add_option("--surface-edge", o_.surface_edge_mm, "Edge length of the nominal surface mesh, mm");
+    c.add_option("--contour-spacing", o_.contour_spacing_mm, "Between contour points, mm");
+    c.add_option("--trajectory-spacing", o_.trajectory_spacing_mm, "Between trajectory points, mm");
     c.add_option("--scan-points", o_.scan_points,
                  "Scan points drawn before the missing parts are cut; default 300000 (nosecone), 120000 (plate)");
-    c.add_option("--noise", o_.noise_mm, "Gaussian noise along the surface normal, sigma, mm; default 0.05");
+    c.add_option("--noise", o_.noise_mm, "Gaussian noise along the surface normal, sigma, mm");
     c.add_option("--missing", o_.missing_fraction,
-                 "Share of the contour's length with no scan near it, in [0, 0.9]; default 0");
-    c.add_option("--missing-patches", o_.missing_patches, "Arcs the missing share is split into; default 4");
-    c.add_option("--missing-depth", o_.missing_depth_mm, "How far from the edge a missing arc reaches, mm; default 15");
-    c.add_option("--holes", o_.holes, "Missing discs of the scan at seeded places; default 0");
-    c.add_option("--hole-radius", o_.hole_radius_mm, "Radius of those discs, mm; default 10");
-    c.add_option("--seed", o_.seed, "Seed of the scan's sampling, noise and missing parts; default 1");
+                 "Share of the contour's length with no scan near it, in [0, 0.9]");
+    c.add_option("--missing-patches", o_.missing_patches, "Arcs the missing share is split into");
+    c.add_option("--missing-depth", o_.missing_depth_mm, "How far from the edge a missing arc reaches, mm");
+    c.add_option("--holes", o_.holes, "Missing discs of the scan at seeded places");
+    c.add_option("--hole-radius", o_.hole_radius_mm, "Radius of those discs, mm");
+    c.add_option("--seed", o_.seed, "Seed of the scan's sampling, noise and missing parts");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
@@ -81,27 +81,27 @@ class GeneratePanelCommand : public Command {
  private:
   void configure_plate(CLI::App& c) {
     c.description("Synthetic double-curvature plate with a porthole, sagging between clamps, scanned around it");
-    c.add_option("--radius-x", o_.plate_radius_x_mm, "Curvature radius along x, mm; default 2500");
-    c.add_option("--radius-y", o_.plate_radius_y_mm, "Curvature radius along y, mm; default 4000");
-    c.add_option("--porthole-width", o_.porthole_width_mm, "Porthole along x (diameter when round), mm; default 380");
-    c.add_option("--porthole-height", o_.porthole_height_mm, "Porthole along y, mm; default 260");
-    c.add_flag("--round", o_.round, "A round porthole (diameter --porthole-width); default oval");
-    c.add_option("--clamp-span", o_.clamp_span_mm, "Distance between the clamps (along x), mm; default 1000");
-    c.add_option("--sag", o_.sag_mm, "Sag at mid-span between the clamps, mm; default 4");
-    c.add_option("--bend", o_.bend_mm, "Bending across the porthole, mm; default 1.5");
-    c.add_option("--twist", o_.twist_mm, "Twist, mm; default 1.5");
+    c.add_option("--radius-x", o_.plate_radius_x_mm, "Curvature radius along x, mm");
+    c.add_option("--radius-y", o_.plate_radius_y_mm, "Curvature radius along y, mm");
+    c.add_option("--porthole-width", o_.porthole_width_mm, "Porthole along x (diameter when round), mm");
+    c.add_option("--porthole-height", o_.porthole_height_mm, "Porthole along y, mm");
+    c.add_flag("--round", o_.round, "A round porthole (diameter --porthole-width)");
+    c.add_option("--clamp-span", o_.clamp_span_mm, "Distance between the clamps (along x), mm");
+    c.add_option("--sag", o_.sag_mm, "Sag at mid-span between the clamps, mm");
+    c.add_option("--bend", o_.bend_mm, "Bending across the porthole, mm");
+    c.add_option("--twist", o_.twist_mm, "Twist, mm");
   }
 
   void configure_nosecone(CLI::App& c) {
     c.description("Synthetic barrel section with a cockpit-like opening with corners, deformed, scanned around it");
-    c.add_option("--radius", o_.barrel_radius_mm, "Barrel radius, mm; default 1000");
-    c.add_option("--window-height", o_.window_height_mm, "Opening along the axis, mm; default 440");
+    c.add_option("--radius", o_.barrel_radius_mm, "Barrel radius, mm");
+    c.add_option("--window-height", o_.window_height_mm, "Opening along the axis, mm");
     c.add_option("--window-bottom", o_.window_bottom_mm,
-                 "Opening's width (arc length) at its rear edge, mm; default 900");
-    c.add_option("--window-top", o_.window_top_mm, "Opening's width at its front edge, mm; default 600");
-    c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the opening's corners, mm (0: sharp); default 3");
-    c.add_option("--ovality", o_.ovality_mm, "Ovality of the cross-section, mm; default 3");
-    c.add_option("--droop", o_.droop_mm, "Droop of the front end, mm; default 4");
+                 "Opening's width (arc length) at its rear edge, mm");
+    c.add_option("--window-top", o_.window_top_mm, "Opening's width at its front edge, mm");
+    c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the opening's corners, mm (0: sharp)");
+    c.add_option("--ovality", o_.ovality_mm, "Ovality of the cross-section, mm");
+    c.add_option("--droop", o_.droop_mm, "Droop of the front end, mm");
   }
 
   PanelOptions o_;

@@ -23,27 +23,27 @@ class GenerateProfileCommand : public Command {
     c.add_option("--out", out_,
                  "Edge CSV to write; beside it <name>.features.csv, .truth.csv, .truth.json (and .edge2.csv); required")
         ->required();
-    c.add_option("--length", d.length_mm, "Profile length along the edge, mm; default 12000");
-    c.add_option("--width", d.width_mm, "Web width (Tx of the second edge), mm; default 370");
+    c.add_option("--length", d.length_mm, "Profile length along the edge, mm");
+    c.add_option("--width", d.width_mm, "Web width (Tx of the second edge), mm");
     c.add_option("--bow", d.bow_in_plane_mm,
-                 "In-plane bow: offset of the edge across the web at the middle, mm; default 40");
+                 "In-plane bow: offset of the edge across the web at the middle, mm");
     c.add_option("--bow-asymmetry", d.bow_asymmetry,
-                 "a in [-1, 1]: bow 4u(1-u)(1 + a(2u-1)), non-zero makes it a true cubic; default 0");
+                 "a in [-1, 1]: bow 4u(1-u)(1 + a(2u-1)), non-zero makes it a true cubic");
     c.add_option("--bow-out", d.bow_out_of_plane_mm,
-                 "Out-of-plane bow along the web normal at the middle, mm; default 0");
-    c.add_option("--twist-deg", twist_deg_, "Twist about the edge from one end to the other, deg; default 0");
+                 "Out-of-plane bow along the web normal at the middle, mm");
+    c.add_option("--twist-deg", twist_deg_, "Twist about the edge from one end to the other, deg");
     c.add_option("--kink-deg", kink_deg_, "Local in-plane bend of the edge, deg; default 0 (none)");
-    c.add_option("--kink-at", d.kink_at_mm, "Ty of the kink's middle, mm; default 4800");
-    c.add_option("--kink-length", d.kink_length_mm, "Length over which the kink bends, mm; default 100");
-    c.add_option("--spacing", o_.spacing_mm, "Edge sample step along the edge, mm; default 5");
-    c.add_option("--noise", o_.noise_mm, "Gaussian noise sigma per coordinate, mm; default 0.1");
-    c.add_option("--dropouts", o_.dropout_fraction, "Fraction of edge samples dropped at random, [0, 0.5]; default 0");
+    c.add_option("--kink-at", d.kink_at_mm, "Ty of the kink's middle, mm");
+    c.add_option("--kink-length", d.kink_length_mm, "Length over which the kink bends, mm");
+    c.add_option("--spacing", o_.spacing_mm, "Edge sample step along the edge, mm");
+    c.add_option("--noise", o_.noise_mm, "Gaussian noise sigma per coordinate, mm");
+    c.add_option("--dropouts", o_.dropout_fraction, "Fraction of edge samples dropped at random, [0, 0.5]");
     c.add_flag("--second-edge", o_.second_edge, "Also measure the other edge (Tx = width) into <name>.edge2.csv");
-    c.add_option("--holes", o_.holes, "Circles evenly along the profile (Ty = L (k + 1/2) / n); default 5");
-    c.add_option("--hole-radius", o_.hole_radius_mm, "Hole radius, mm; default 50");
-    c.add_option("--hole-tx", o_.hole_tx_mm, "Tx of the hole centres, mm; default 100");
+    c.add_option("--holes", o_.holes, "Circles evenly along the profile (Ty = L (k + 1/2) / n)");
+    c.add_option("--hole-radius", o_.hole_radius_mm, "Hole radius, mm");
+    c.add_option("--hole-tx", o_.hole_tx_mm, "Tx of the hole centres, mm");
     c.add_flag("--marking-line", o_.marking_line, "Add a marking line (polyline M1) at Tx = width / 2");
-    c.add_option("--seed", o_.seed, "Seed of the noise and the dropouts; default 1");
+    c.add_option("--seed", o_.seed, "Seed of the noise and the dropouts");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

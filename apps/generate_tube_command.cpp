@@ -34,10 +34,10 @@ class GenerateTubeCommand : public Command {
     configure_geometry(c);
     configure_deformations(c);
     configure_effects(c);
-    c.add_option("--seed", seed_, "Seed of every random choice (noise, holes, outliers); default 1");
-    c.add_flag("--ascii", ascii_, "Write ascii .ply/.stl; default binary");
-    c.add_flag("--double", double_, "Write .ply vertices as double (the exact truth on disk); default float");
-    c.add_flag("--normals", normals_, "Store per-vertex normals (area-weighted from the faces); default none");
+    c.add_option("--seed", seed_, "Seed of every random choice (noise, holes, outliers)");
+    c.add_flag("--ascii", ascii_, "Write ascii .ply/.stl");
+    c.add_flag("--double", double_, "Write .ply vertices as double (the exact truth on disk)");
+    c.add_flag("--normals", normals_, "Store per-vertex normals (area-weighted from the faces)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
@@ -60,16 +60,16 @@ class GenerateTubeCommand : public Command {
 
  private:
   void configure_geometry(CLI::App& c) {
-    c.add_option("--radius", t_.radius_mm, "Nominal radius R, mm; default 150");
-    c.add_option("--length", t_.length_mm, "Length along the axis, mm; the tube spans z in [-L/2, L/2]; default 300");
-    c.add_option("--arc-deg", arc_deg_, "Azimuth span, deg, in (0, 360]; 360 is a closed tube; default 360");
-    c.add_option("--arc-center-deg", arc_center_deg_, "Azimuth at the middle of a patch, deg; default 0");
+    c.add_option("--radius", t_.radius_mm, "Nominal radius R, mm");
+    c.add_option("--length", t_.length_mm, "Length along the axis, mm; the tube spans z in [-L/2, L/2]");
+    c.add_option("--arc-deg", arc_deg_, "Azimuth span, deg, in (0, 360]; 360 is a closed tube");
+    c.add_option("--arc-center-deg", arc_center_deg_, "Azimuth at the middle of a patch, deg");
     c.add_flag("--inner", inner_, "Inner surface: faces point towards the axis; default outer (away from it)");
-    CLI::Option* edge = c.add_option("--edge", t_.edge_mm, "Target edge length of the triangles, mm; default 5");
+    CLI::Option* edge = c.add_option("--edge", t_.edge_mm, "Target edge length of the triangles, mm");
     c.add_option("--vertices", t_.vertex_count, "Choose the edge length for about N vertices instead of --edge")
         ->excludes(edge);
-    c.add_option("--axis-point", axis_point_, "Middle of the tube axis, world mm, x,y,z; default 0,0,0");
-    c.add_option("--axis-direction", axis_direction_, "Tube axis (its +z), world, x,y,z; default 0,0,1");
+    c.add_option("--axis-point", axis_point_, "Middle of the tube axis, world mm, x,y,z");
+    c.add_option("--axis-direction", axis_direction_, "Tube axis (its +z), world, x,y,z");
     c.add_option("--azimuth-reference", azimuth_reference_,
                  "World direction whose part across the axis is azimuth 0, x,y,z; default the world axis least "
                  "aligned with the tube axis (x, then y, then z)");
@@ -78,33 +78,33 @@ class GenerateTubeCommand : public Command {
   void configure_deformations(CLI::App& c) {
     c.add_option("--ovality", t_.ovality_mm,
                  "Ovality amplitude a in r = R + a cos 2(theta - theta0), mm "
-                 "(D_max - D_min = 4a); default 0");
-    c.add_option("--ovality-azimuth-deg", ovality_azimuth_deg_, "theta0, where the radius is largest, deg; default 0");
-    c.add_option("--seam-height", t_.seam_height_mm, "Peaking at the seam, radial, mm, signed (+ outwards); default 0");
-    c.add_option("--seam-width", t_.seam_width_mm, "Full base width of the seam ridge, arc length mm; default 20");
-    c.add_option("--seam-azimuth-deg", seam_azimuth_deg_, "Azimuth of the seam, deg; default 0");
+                 "(D_max - D_min = 4a)");
+    c.add_option("--ovality-azimuth-deg", ovality_azimuth_deg_, "theta0, where the radius is largest, deg");
+    c.add_option("--seam-height", t_.seam_height_mm, "Peaking at the seam, radial, mm, signed (+ outwards)");
+    c.add_option("--seam-width", t_.seam_width_mm, "Full base width of the seam ridge, arc length mm");
+    c.add_option("--seam-azimuth-deg", seam_azimuth_deg_, "Azimuth of the seam, deg");
     c.add_option("--bump", bumps_,
                  "AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM: a bump (height > 0) or indentation (< 0), raised cosine of the "
-                 "given footprint radius; repeatable; default none")
+                 "given footprint radius; repeatable")
         ->allow_extra_args(false);
-    c.add_option("--bow", t_.bow_mm, "Bow: sagitta at mid-length, mm (zero at both ends, parabolic); default 0");
-    c.add_option("--bow-azimuth-deg", bow_azimuth_deg_, "Direction the middle moves to, deg; default 0");
+    c.add_option("--bow", t_.bow_mm, "Bow: sagitta at mid-length, mm (zero at both ends, parabolic)");
+    c.add_option("--bow-azimuth-deg", bow_azimuth_deg_, "Direction the middle moves to, deg");
   }
 
   void configure_effects(CLI::App& c) {
-    c.add_option("--noise", t_.noise_mm, "Noise, mm: gaussian sigma or uniform half-width; default 0");
-    c.add_option("--noise-type", noise_type_, "gaussian or uniform; default gaussian")
+    c.add_option("--noise", t_.noise_mm, "Noise, mm: gaussian sigma or uniform half-width");
+    c.add_option("--noise-type", noise_type_, "gaussian or uniform")
         ->check(CLI::IsMember({"gaussian", "uniform"}));
     c.add_option("--noise-direction", noise_direction_,
-                 "normal (along the exact surface normal) or isotropic (uniform: in a ball); default normal")
+                 "normal (along the exact surface normal) or isotropic (uniform: in a ball)")
         ->check(CLI::IsMember({"normal", "isotropic"}));
-    c.add_option("--hole", holes_, "AZ_DEG,Z_MM,RADIUS_MM: a missing disc of the scan; repeatable; default none")
+    c.add_option("--hole", holes_, "AZ_DEG,Z_MM,RADIUS_MM: a missing disc of the scan; repeatable")
         ->allow_extra_args(false);
-    c.add_option("--holes", t_.random_holes, "Number of holes at seeded random places (not overlapping); default 0");
-    c.add_option("--hole-radius", t_.random_hole_radius_mm, "Radius of the random holes, mm; default 10");
-    c.add_option("--outliers", t_.outlier_fraction, "Share of vertices made outliers, in [0, 1); default 0");
+    c.add_option("--holes", t_.random_holes, "Number of holes at seeded random places (not overlapping)");
+    c.add_option("--hole-radius", t_.random_hole_radius_mm, "Radius of the random holes, mm");
+    c.add_option("--outliers", t_.outlier_fraction, "Share of vertices made outliers, in [0, 1)");
     c.add_option("--outlier-distance", t_.outlier_distance_mm,
-                 "Outliers move d to 2d along the normal, either side, mm; default 5");
+                 "Outliers move d to 2d along the normal, either side, mm");
   }
 
   TubeOptions tube_options() const {

@@ -33,31 +33,31 @@ class GenerateTubeJointCommand : public Command {
     c.add_option("--out-truth", o_.truth_path,
                  "Ground-truth intersection CSV (phi_rad,x_mm,y_mm,z_mm in S) to write; required")
         ->required();
-    c.add_option("--pitch-deg", pitch_deg_, "Angle between the leg and stub axes, deg, in (0, 90]; default 90");
-    c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm; default 0");
+    c.add_option("--pitch-deg", pitch_deg_, "Angle between the leg and stub axes, deg, in (0, 90]");
+    c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm");
     c.add_option("--protrusion", o_.spec.protrusion_mm,
                  "Stub's distal end to the leg axis along the stub axis, mm; default 0 = automatic (100 mm clear)");
-    c.add_option("--leg-radius", o_.joint.leg.radius_mm, "Leg outer radius, mm; default 1000");
-    c.add_option("--stub-radius", o_.stub_outer_radius_mm, "Stub outer radius, mm; default 500");
-    c.add_option("--wall", o_.wall_mm, "Stub wall thickness (scanned inside: radius - wall), mm; default 25");
-    c.add_option("--edge", edge_mm_, "Mesh edge length of both scans, mm; default 5");
-    c.add_option("--leg-vertices", o_.joint.leg.vertex_count, "Leg: about N vertices instead of --edge; default 0");
-    c.add_option("--stub-vertices", o_.joint.stub.vertex_count, "Stub: about N vertices instead of --edge; default 0");
+    c.add_option("--leg-radius", o_.joint.leg.radius_mm, "Leg outer radius, mm");
+    c.add_option("--stub-radius", o_.stub_outer_radius_mm, "Stub outer radius, mm");
+    c.add_option("--wall", o_.wall_mm, "Stub wall thickness (scanned inside: radius - wall), mm");
+    c.add_option("--edge", edge_mm_, "Mesh edge length of both scans, mm");
+    c.add_option("--leg-vertices", o_.joint.leg.vertex_count, "Leg: about N vertices instead of --edge");
+    c.add_option("--stub-vertices", o_.joint.stub.vertex_count, "Stub: about N vertices instead of --edge");
     c.add_option("--ovality-pct", ovality_pct_,
                  "Ovality of both tubes, D_max - D_min in % of D; default 0 (the issue's case: 1)");
-    c.add_option("--peaking", peaking_mm_, "Peaking at both seam welds, radial mm; default 0");
-    c.add_option("--leg-seam-deg", leg_seam_deg_, "Leg seam azimuth (from x_L), deg; default 15");
-    c.add_option("--stub-seam-deg", stub_seam_deg_, "Stub seam azimuth (from x_S, the toe), deg; default 100");
-    c.add_option("--seam-width", seam_width_mm_, "Full width of the peaking ridge, arc mm; default 150");
+    c.add_option("--peaking", peaking_mm_, "Peaking at both seam welds, radial mm");
+    c.add_option("--leg-seam-deg", leg_seam_deg_, "Leg seam azimuth (from x_L), deg");
+    c.add_option("--stub-seam-deg", stub_seam_deg_, "Stub seam azimuth (from x_S, the toe), deg");
+    c.add_option("--seam-width", seam_width_mm_, "Full width of the peaking ridge, arc mm");
     c.add_option("--leg-bump", leg_bumps_, "AZ_DEG,Z_L_MM,HEIGHT_MM,RADIUS_MM: a bump on the leg; repeatable");
     c.add_option("--stub-bump", stub_bumps_, "AZ_DEG,Z_S_MM,HEIGHT_MM,RADIUS_MM: a bump on the stub; repeatable");
-    c.add_option("--noise", noise_mm_, "Gaussian noise along the normal, sigma, mm; default 0");
+    c.add_option("--noise", noise_mm_, "Gaussian noise along the normal, sigma, mm");
     c.add_option("--leg-arc-deg", leg_arc_deg_, "Leg azimuth span, deg; default 0 = a patch around the joint");
     c.add_option("--stub-length", o_.joint.stub_length_mm,
                  "Stub length from its distal end, mm; default 0 = automatic (its end inside the leg)");
-    c.add_option("--truth-points", o_.joint.truth_points, "Ground-truth samples (equal stub azimuth); default 3600");
-    c.add_option("--seed", seed_, "Seed of the noise (leg: seed, stub: seed + 1); default 1");
-    c.add_flag("--ascii", ascii_, "Write ascii .ply/.stl; default binary");
+    c.add_option("--truth-points", o_.joint.truth_points, "Ground-truth samples (equal stub azimuth)");
+    c.add_option("--seed", seed_, "Seed of the noise (leg: seed, stub: seed + 1)");
+    c.add_flag("--ascii", ascii_, "Write ascii .ply/.stl");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 the job ran but did not succeed, 2 bad usage or bad input.",
       "conform"};
   root.require_subcommand(1);
+  // Every option's default shown in --help is read from the Options struct it is bound to: one source, no
+  // hand-written "default N" in a description to drift from the code.
+  root.option_defaults()->always_capture_default();
   root.set_version_flag("--version", "conform 0.1.0");
 
   auto entries = command_registry();

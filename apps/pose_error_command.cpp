@@ -26,7 +26,7 @@ class PoseErrorCommand : public Command {
     c.add_option("--transform", paths_, "A 4x4 row-major text transform; give exactly two (A, then B)")
         ->required()
         ->allow_extra_args(false);
-    c.add_option("--units", units_, "Units of the translations (mm, cm, m, in); results are in mm; default mm");
+    c.add_option("--units", units_, "Units of the translations (mm, cm, m, in); results are in mm");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

@@ -40,20 +40,20 @@ class ProfileCommand : public Command {
                  "Designed features, .csv (id,type,tx_mm,ty_mm,radius_mm) or .json (docs/profile.md); required")
         ->required();
     c.add_option("--model", model_,
-                 "Edge model: auto (cubic unless a spline fits far better), cubic, spline; default auto")
+                 "Edge model: auto (cubic unless a spline fits far better), cubic, spline")
         ->check(CLI::IsMember({"auto", "cubic", "spline"}));
     CLI::Option* web =
         c.add_option("--web-normal", web_normal_,
                      "Web normal Z, x,y,z (any length); default: the plane of the edge points, towards +z");
     CLI::Option* second = c.add_option("--second-edge", second_edge_,
                                        "The profile's other edge (+Tx side), CSV x_mm,y_mm,z_mm: local web direction "
-                                       "for twist; default none");
+                                       "for twist");
     web->excludes(second);
-    c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm; default 0.05");
-    c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm; default 50");
+    c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm");
+    c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm");
     c.add_option("--noise", noise_mm_,
                  "Edge sensor noise sigma per coordinate, mm, for the spline; default 0 (estimate)");
-    c.add_option("--out", out_, "CSV to write: id,i,x_mm,y_mm,z_mm (circle centre i = -1); default none");
+    c.add_option("--out", out_, "CSV to write: id,i,x_mm,y_mm,z_mm (circle centre i = -1)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

@@ -40,7 +40,7 @@ class SaddleCommand : public Command {
     step->excludes(speed)->excludes(period);
     speed->needs(period);
     period->needs(speed);
-    command.add_option("--out", out_path_, "CSV to write: i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm; default none");
+    command.add_option("--out", out_path_, "CSV to write: i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm");
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     step_ = step;
     speed_ = speed;

@@ -44,27 +44,27 @@ class SicpCommand : public Command {
                  "Nominal surface around the contour (mesh: point-to-surface); default the contour mesh, or none "
                  "(contour-only, point-to-point, no joint refinement)");
     c.add_option("--segment-length", o.sicp.segmentation.segment_length_mm,
-                 "Longest segment (epsilon), mm; default 60");
+                 "Longest segment (epsilon), mm");
     c.add_option("--overlap", o.sicp.segmentation.overlap,
-                 "Overlap at each junction, share of the shorter segment, in (0, 1); default 0.3");
+                 "Overlap at each junction, share of the shorter segment, in (0, 1)");
     c.add_option("--curvature-radius", o.sicp.segmentation.curvature_radius_mm,
                  "Osculating radius below which a contour point is a corner (a segment boundary), mm; 0: none; "
                  "default 15");
-    c.add_option("--model", model_, "sicp, rigid or projection; default sicp")
+    c.add_option("--model", model_, "sicp, rigid or projection")
         ->check(CLI::IsMember({"sicp", "rigid", "projection"}));
-    c.add_option("--projection-fit", fit_, "The projection model's height field: parabola or spline; default parabola")
+    c.add_option("--projection-fit", fit_, "The projection model's height field: parabola or spline")
         ->check(CLI::IsMember({"parabola", "spline"}));
-    c.add_option("--neighbourhood", o.sicp.neighbourhood_mm, "Contour neighbourhood: scan within this, mm; default 10");
+    c.add_option("--neighbourhood", o.sicp.neighbourhood_mm, "Contour neighbourhood: scan within this, mm");
     c.add_option("--stability", o.sicp.stability_mm,
-                 "Stability region reaches this far from the contour, mm; default 30");
-    c.add_option("--max-distance", o.sicp.max_distance_mm, "Pair distance of the segment ICPs, mm; default 5");
+                 "Stability region reaches this far from the contour, mm");
+    c.add_option("--max-distance", o.sicp.max_distance_mm, "Pair distance of the segment ICPs, mm");
     c.add_option("--coarse-max-distance", o.sicp.coarse_max_distance_mm,
-                 "Pair distance of the first rigid ICP (the scan is roughly in place), mm; default 20");
-    c.add_option("--scan-voxel", o.sicp.scan_voxel_mm, "Scan thinned to one point per voxel, mm; 0: all; default 1");
+                 "Pair distance of the first rigid ICP (the scan is roughly in place), mm");
+    c.add_option("--scan-voxel", o.sicp.scan_voxel_mm, "Scan thinned to one point per voxel, mm; 0: all");
     c.add_flag("--no-joint", no_joint_, "Segments registered independently (the paper), no joint refinement");
     c.add_option("--joint-weight", o.sicp.joint.weight,
-                 "Weight of neighbouring segments' disagreement in the joint refinement; default 1");
-    c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate; default scan")
+                 "Weight of neighbouring segments' disagreement in the joint refinement");
+    c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate")
         ->check(CLI::IsMember({"scan", "rotate"}));
     c.add_option("--truth", options_.truth_path,
                  "Ground-truth trajectory (same columns and rows): report the error against it");

@@ -33,7 +33,7 @@ class TubeJointCommand : public Command {
     CLI::Option* pitch = c.add_option("--pitch-deg", pitch_deg_,
                                       "Angle between the leg and stub axes, deg, (0, 90]; required unless --leg-pose");
     CLI::Option* offset =
-        c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm; default 0");
+        c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm");
     CLI::Option* protrusion =
         c.add_option("--protrusion", o_.spec.protrusion_mm,
                      "Stub's distal end to the leg axis along the stub axis, mm; default 0 (give it)");
@@ -45,32 +45,32 @@ class TubeJointCommand : public Command {
                  "frame then comes from its cylinder fit + markers; default none (the mesh is in L)");
     c.add_option("--stub-markers", o_.stub_markers_path,
                  "The same for the stub (known positions in S); default none (the mesh is in S)");
-    CLI::Option* step_deg = c.add_option("--step-deg", step_deg_, "Resample at equal azimuth steps, deg; default 1");
+    CLI::Option* step_deg = c.add_option("--step-deg", step_deg_, "Resample at equal azimuth steps, deg");
     CLI::Option* step_mm =
-        c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm; default none");
+        c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm");
     step_deg->excludes(step_mm);
     CLI::Option* smoothing = c.add_option(
         "--smoothing", smoothing_mm2_,
         "Closed smoothing cubic B-spline before resampling: target sum of squared residuals, mm^2 (splprep's s); "
         "default none");
     CLI::Option* smoothing_rms = c.add_option("--smoothing-rms", smoothing_rms_mm_,
-                                              "Smoothing target as RMS per intersection point, mm; default none");
+                                              "Smoothing target as RMS per intersection point, mm");
     smoothing->excludes(smoothing_rms);
-    c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg; default 0,0,0,0");
-    c.add_option("--groove-interpolation", interpolation_, "linear or quadratic (Eq. 5); default linear")
+    c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg");
+    c.add_option("--groove-interpolation", interpolation_, "linear or quadratic (Eq. 5)")
         ->check(CLI::IsMember({"linear", "quadratic"}));
-    c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg; default 45");
-    c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm; default 10");
-    c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm; default 15");
+    c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg");
+    c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm");
+    c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm");
     c.add_option("--k-normals", o_.solve.geometry.k_normals,
-                 "Vertices per normal fit (PCA plane + quadric), >= 3; default 40");
+                 "Vertices per normal fit (PCA plane + quadric), >= 3");
     c.add_option("--k-refine", o_.solve.geometry.k_refine,
                  "Vertices per local surface fit when refining path points onto both scans; 0 = off (the paper's "
-                 "point); default 40");
+                 "point)");
     c.add_option("--out-path", o_.out_path,
-                 "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame); default none");
-    c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses; default none");
-    c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses; default none");
+                 "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame)");
+    c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses");
+    c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
     step_mm_option_ = step_mm;

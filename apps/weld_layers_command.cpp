@@ -26,12 +26,12 @@ class WeldLayersCommand : public Command {
     c.add_option("--layer-height", o_.weld.layer_height_mm, "Layer height cd, mm; required")->required();
     c.add_option("--chord-error", o_.weld.chord_error_mm, "Max chord error delta of a path step, mm; required")
         ->required();
-    c.add_option("--torch-distance", o_.weld.torch_distance_mm, "Torch-to-surface distance w (Eq. 5), mm; default 0");
+    c.add_option("--torch-distance", o_.weld.torch_distance_mm, "Torch-to-surface distance w (Eq. 5), mm");
     c.add_option("--layers", o_.weld.layers, "Number of layers; default 0 = ceil(max depth / layer height)");
     c.add_option("--depth-threshold", o_.weld.depth_threshold_mm,
                  "Depth below the reference where the damage starts, mm; default 6 x the estimated noise (>= 0.01); "
                  "0 = plain intersection");
-    c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz; default none");
+    c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
