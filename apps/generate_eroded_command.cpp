@@ -1,6 +1,7 @@
 // `conform generate eroded`: a synthetic eroded turbine-blade surface with craters, as grid files with the reference
 // grid and the ground-truth rims beside it (pipelines/generate_eroded.h).
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -14,9 +15,19 @@
 namespace conform::app {
 namespace {
 
-// "X,Y,RADIUS,DEPTH" -> a crater; conform::Error naming the flag otherwise.
+// "X,Y,RADIUS,DEPTH[,INNER[,LIP,LIP_WIDTH]]" -> a crater; conform::Error naming the flag otherwise.
 Crater parse_crater(const std::string& text) {
-  const std::vector<double> v = parse_numbers(text, 4, "--crater", "X_MM,Y_MM,RADIUS_MM,DEPTH_MM");
+  const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
+  const std::string shape = "X_MM,Y_MM,RADIUS_MM,DEPTH_MM[,INNER_RADIUS_MM[,LIP_MM,LIP_WIDTH_MM]]";
+  const std::vector<double> v = parse_numbers(text, n == 5 || n == 7 ? n : 4, "--crater", shape);
+  Crater c{v[0], v[1], v[2], v[3]};
+  if (v.size() >= 5) c.inner_radius_mm = v[4];
+  if (v.size() == 7) c.lip_mm = v[5], c.lip_width_mm = v[6];
+  return c;
+}
+
+Bump parse_bump(const std::string& text) {
+  const std::vector<double> v = parse_numbers(text, 4, "--bump", "X_MM,Y_MM,RADIUS_MM,HEIGHT_MM");
   return {v[0], v[1], v[2], v[3]};
 }
 
@@ -34,7 +45,11 @@ class GenerateErodedCommand : public Command {
     c.add_option("--span-radius", o_.span_radius_mm, "Curvature radius along y, mm");
     c.add_option("--twist", o_.twist_per_mm, "Twist: z += twist * x * y, 1/mm");
     c.add_option("--crater", craters_,
-                 "Crater X_MM,Y_MM,RADIUS_MM,DEPTH_MM (repeatable); default one at 0,0 of radius 15 mm, depth 2 mm");
+                 "Crater X_MM,Y_MM,RADIUS_MM,DEPTH_MM [,INNER_RADIUS_MM[,LIP_MM,LIP_WIDTH_MM]] (repeatable; inner radius > 0: "
+                 "ring-shaped; a raised lip beyond the rim); without it one at 0,0 of radius 15 mm, depth 2 mm");
+    c.add_option("--bump", bumps_, "Raised bump X_MM,Y_MM,RADIUS_MM,HEIGHT_MM (repeatable)");
+    c.add_option("--reference-offset", o_.reference_offset_mm, "Reference grid moved along +z (registration error), mm");
+    c.add_option("--reference-tilt-deg", o_.reference_tilt_deg, "Reference grid tilted about y, degrees");
     c.add_option("--noise", o_.noise_mm, "Noise of the eroded grid along z (1 sigma), mm");
     c.add_option("--seed", seed_, "Seed of the noise");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
@@ -48,6 +63,7 @@ class GenerateErodedCommand : public Command {
       options.eroded.craters.clear();
       for (const std::string& text : craters_) options.eroded.craters.push_back(parse_crater(text));
     }
+    for (const std::string& text : bumps_) options.eroded.bumps.push_back(parse_bump(text));
     options.out_path = out_;
     const GenerateErodedResult r = run_generate_eroded(options);
     if (json_) {
@@ -66,6 +82,7 @@ class GenerateErodedCommand : public Command {
  private:
   ErodedOptions o_;
   std::vector<std::string> craters_;
+  std::vector<std::string> bumps_;
   std::uint64_t seed_ = 1;
   std::string out_;
   bool json_ = false;

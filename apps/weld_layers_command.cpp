@@ -1,6 +1,7 @@
 // `conform weld-layers`: the boundary of the eroded area and parallel weld paths, layer by layer, to rebuild an
 // eroded surface (Simas, Dias & Guenther; pipelines/weld_layers.h).
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -27,10 +28,20 @@ class WeldLayersCommand : public Command {
     c.add_option("--chord-error", o_.weld.chord_error_mm, "Max chord error delta of a path step, mm; required")
         ->required();
     c.add_option("--torch-distance", o_.weld.torch_distance_mm, "Torch-to-surface distance w (Eq. 5), mm");
-    c.add_option("--layers", o_.weld.layers, "Number of layers; default 0 = ceil(max depth / layer height)");
+    c.add_option("--layers", o_.weld.layers, "Number of layers; 0 = ceil((max depth - threshold) / layer height)")
+        ->check(CLI::Range(0, kMaxWeldLayers));
     c.add_option("--depth-threshold", o_.weld.depth_threshold_mm,
-                 "Depth below the reference where the damage starts, mm; default 6 x the estimated noise (>= 0.01); "
-                 "0 = plain intersection");
+                 "Depth below the reference where the damage starts, mm; < 0: 6 x the estimated noise (>= 0.01 mm); "
+                 "0 = any depth");
+    c.add_option("--outward", o_.weld.outward_side,
+                 "Which side of the reference the torch is on: +1 along its r_u x r_v, -1 against; 0 = from the data")
+        ->check(CLI::Range(-1, 1));
+    c.add_option("--bias", bias_,
+                 "Registration offset/tilt of the eroded grid against the reference: check (a significant one fails, "
+                 "exit 1), remove (subtract it), keep (refill it as damage)")
+        ->check(CLI::IsMember({"check", "remove", "keep"}));
+    c.add_option("--min-coverage", o_.weld.min_coverage_pct,
+                 "Least share of the damage within half a bead spacing of a layer-1 path, %; below: exit 1");
     c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
@@ -39,6 +50,7 @@ class WeldLayersCommand : public Command {
     if (o_.reference_path.empty() && !from_border_) {
       throw Error("weld-layers: give --reference FILE or --reference-from-border");
     }
+    o_.weld.bias = bias_ == "remove" ? BiasMode::kRemove : bias_ == "keep" ? BiasMode::kKeep : BiasMode::kCheck;
     const WeldLayersJobResult job = run_weld_layers(o_);
     const WeldLayerResult& w = job.weld;
     if (json_) {
@@ -46,6 +58,7 @@ class WeldLayersCommand : public Command {
     } else {
       print_text(job);
     }
+    for (const std::string& text : w.warnings) warn("weld-layers: warning: " + text);
     if (!w.ok) {
       warn("weld-layers: " + w.termination + "; no file written");
       return 1;
@@ -57,9 +70,35 @@ class WeldLayersCommand : public Command {
   nlohmann::json to_json(const WeldLayersJobResult& job) const {
     const WeldLayerResult& w = job.weld;
     nlohmann::json rims = nlohmann::json::array();
-    for (const IntersectionCurve& c : w.rims) rims.push_back({{"points", c.points.size()}, {"length_mm", c.length_mm()}});
+    for (const IntersectionCurve& c : w.rims) {
+      rims.push_back({{"points", c.points.size()}, {"length_mm", c.length_mm()}, {"closed", c.closed},
+                      {"closed_along_border", !c.closed}});
+    }
+    const DamageMap& d = w.damage;
+    nlohmann::json craters = nlohmann::json::array();
+    for (const DamageRegion& r : d.regions) {
+      craters.push_back({{"id", r.id}, {"nodes", r.nodes}, {"area_mm2", r.area_mm2}, {"volume_mm3", r.volume_mm3},
+                         {"max_depth_mm", r.max_depth_mm}, {"deepest_mm", {r.deepest.x(), r.deepest.y(), r.deepest.z()}},
+                         {"deepest_row", r.deepest_row}, {"deepest_col", r.deepest_col}, {"at_border", r.at_border}});
+    }
+    nlohmann::json bias = {{"offset_mm", d.bias_offset_mm}, {"tilt_deg", d.bias_tilt_deg}, {"span_mm", d.bias_span_mm},
+                           {"significant", d.bias_significant}, {"removed", d.bias_removed}, {"mode", bias_}};
     return {{"ok", w.ok},
             {"termination", w.termination},
+            {"warnings", w.warnings},
+            {"craters", craters},
+            {"bias", bias},
+            {"outward_sign", d.outward_sign},
+            {"side_from_data", d.side_from_data},
+            {"side_ratio", std::isfinite(d.side_ratio) ? nlohmann::json(d.side_ratio) : nlohmann::json(nullptr)},
+            {"off_reference_nodes", d.off_reference},
+            {"damage_coverage_pct", w.damage_coverage_pct},
+            {"paths_per_layer", w.paths_per_layer},
+            {"border_rims", w.border_rims},
+            {"regions_without_rim", w.regions_without_rim},
+            {"cusps_removed", w.cusps_removed},
+            {"max_paths_reached", w.max_paths_reached},
+            {"intersection_box_pairs", w.box_pairs},
             {"layers", w.layers},
             {"paths", w.paths.size()},
             {"half_step_paths", w.half_step_paths},
@@ -88,13 +127,25 @@ class WeldLayersCommand : public Command {
     const WeldLayerResult& w = job.weld;
     std::printf("grids         eroded %d x %d, reference %d x %d\n", job.eroded_rows, job.eroded_cols,
                 job.reference_rows, job.reference_cols);
+    const DamageMap& d = w.damage;
     std::printf("depth         noise %.4f mm, threshold %.4f mm (%s), max depth %.4f mm\n", w.noise_mm,
                 w.depth_threshold_mm, w.threshold_estimated ? "6 x noise" : "given", w.max_depth_mm);
-    std::printf("rims          %zu closed", w.rims.size());
+    std::printf("bias          offset %.4f mm, tilt %.4f deg, up to %.4f mm (%s%s)\n", d.bias_offset_mm,
+                d.bias_tilt_deg, d.bias_span_mm, d.bias_significant ? "significant" : "within the noise",
+                d.bias_removed ? ", removed" : "");
+    std::printf("side          torch along %s r_u x r_v of the reference (%s)\n", d.outward_sign > 0 ? "+" : "-",
+                d.side_from_data ? "from the data" : "given");
+    std::printf("craters       %zu\n", d.regions.size());
+    for (const DamageRegion& r : d.regions) {
+      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s\n", r.id, r.max_depth_mm, r.deepest.x(),
+                  r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
+    }
+    std::printf("rims          %zu (%zu closed along the border)", w.rims.size(), w.border_rims);
     for (std::size_t k = 0; k < w.rims.size() && k < 6; ++k) std::printf(" (%.3f mm)", w.rims[k].length_mm());
     if (w.rims.size() > 6) std::printf(" ...");
-    std::printf(", %zu open\n", w.open_curves);
-    if (!w.ok) return;
+    std::printf(", %zu open pieces\n", w.open_curves);
+    if (w.layers == 0) return;
+    std::printf("damage cover  %.2f %% (damaged nodes within dc/2 of a layer-1 path)\n", w.damage_coverage_pct);
     std::printf("layers        %d, paths %zu (%zu half-step paths before clipping)\n", w.layers, w.paths.size(),
                 w.half_step_paths);
     std::printf("length        %.3f mm in total\n", w.total_length_mm);
@@ -102,12 +153,14 @@ class WeldLayersCommand : public Command {
     std::printf("chord error   max %.6f mm\n", w.chord_error_mm_max);
     std::printf("coverage %%    ");
     for (double pct : w.coverage_pct) std::printf(" %.2f", pct);
-    std::printf("  (by layer: share of its region within 0.55 bead spacing of a path)\n");
-    std::printf("loops removed %zu, Newton offsets %zu\n", w.loops_removed, w.newton_offsets);
+    std::printf("  (by layer: share of its region within dc/2 of its paths)\n");
+    std::printf("loops removed %zu, cusps removed %zu, Newton offsets %zu\n", w.loops_removed, w.cusps_removed,
+                w.newton_offsets);
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
   }
 
   WeldLayersJobOptions o_;
+  std::string bias_ = "check";
   bool from_border_ = false;
   bool json_ = false;
 };

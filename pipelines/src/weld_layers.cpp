@@ -11,7 +11,13 @@ namespace conform {
 namespace {
 
 SurfaceGrid read_grid(const std::string& path) {
-  return surface_grid_from_table(read_csv(path, {"row", "col", "x_mm", "y_mm", "z_mm"}));
+  SurfaceGrid grid = surface_grid_from_table(read_csv(path, {"row", "col", "x_mm", "y_mm", "z_mm"}));
+  const double nodes = static_cast<double>(grid.rows) * static_cast<double>(grid.cols);
+  if (nodes > static_cast<double>(kMaxWeldGridNodes)) {
+    throw Error(path + ": a " + std::to_string(grid.rows) + " x " + std::to_string(grid.cols) + " grid exceeds " +
+                std::to_string(kMaxWeldGridNodes) + " nodes (limit kMaxWeldGridNodes): crop or thin it");
+  }
+  return grid;
 }
 
 }  // namespace

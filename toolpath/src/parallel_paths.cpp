@@ -209,6 +209,24 @@ std::vector<Eigen::Vector2d> remove_loops(const std::vector<Eigen::Vector2d>& po
   return out;
 }
 
+std::size_t remove_cusps(std::vector<Eigen::Vector3d>* points, std::vector<Eigen::Vector2d>* uv) {
+  std::size_t removed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t i = 1; i + 1 < points->size(); ++i) {
+      const Eigen::Vector3d a = (*points)[i] - (*points)[i - 1], b = (*points)[i + 1] - (*points)[i];
+      if (a.dot(b) < 0.0 || a.norm() < 1e-9) {
+        points->erase(points->begin() + static_cast<long>(i));
+        uv->erase(uv->begin() + static_cast<long>(i));
+        ++removed;
+        changed = true;
+        break;
+      }
+    }
+  }
+  return removed;
+}
+
 bool self_intersects(const std::vector<Eigen::Vector2d>& polyline) {
   for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
     for (std::size_t j = i + 2; j + 1 < polyline.size(); ++j) {
@@ -290,15 +308,45 @@ std::vector<double> smoothed_targets(const ParametricSurface& surface, const Sur
                              options.normal_sign * f.normal_curvature(across.x(), across.y()));
   }
   const std::vector<double> s = arc_lengths(path);
-  std::vector<double> out(n);
+  std::vector<double> out(n), prefix(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + raw[i];
+  std::size_t lo = 0, hi = 0;  // the window [lo, hi) of points within dc/2 of s[i] (s is increasing)
   for (std::size_t i = 0; i < n; ++i) {
-    double sum = 0.0, count = 0.0;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (std::abs(s[j] - s[i]) <= 0.5 * options.spacing_mm) sum += raw[j], count += 1.0;
-    }
-    out[i] = sum / count;
+    while (s[i] - s[lo] > 0.5 * options.spacing_mm) ++lo;
+    while (hi < n && s[hi] - s[i] <= 0.5 * options.spacing_mm) ++hi;
+    out[i] = (prefix[hi] - prefix[lo]) / static_cast<double>(hi - lo);
   }
   return out;
+}
+
+// The longest run of offset points inside the domain, each end extended to where the parameter segment to its outside
+// neighbour crosses the domain's border: a path that leaves the surface ends at its edge, not one step before it.
+std::vector<Eigen::Vector2d> clip_to_domain(const std::vector<Eigen::Vector2d>& points, const std::vector<bool>& inside,
+                                            const ParameterDomain& d) {
+  auto crossing = [&](const Eigen::Vector2d& in, const Eigen::Vector2d& out) {
+    double t = 1.0;  // largest t in [0, 1] with in + t (out - in) in the domain
+    const Eigen::Vector2d step = out - in;
+    const double lo[2] = {d.u_min, d.v_min}, hi[2] = {d.u_max, d.v_max};
+    for (int a = 0; a < 2; ++a) {
+      if (step[a] > 0.0) t = std::min(t, (hi[a] - in[a]) / step[a]);
+      if (step[a] < 0.0) t = std::min(t, (lo[a] - in[a]) / step[a]);
+    }
+    return Eigen::Vector2d(in + std::max(t, 0.0) * step);
+  };
+  std::vector<Eigen::Vector2d> best, run;
+  for (std::size_t i = 0; i <= points.size(); ++i) {
+    if (i < points.size() && inside[i]) {
+      if (run.empty() && i > 0) run.push_back(crossing(points[i], points[i - 1]));
+      run.push_back(points[i]);
+      continue;
+    }
+    if (!run.empty()) {
+      if (i < points.size()) run.push_back(crossing(points[i - 1], points[i]));
+      if (run.size() > best.size()) best = run;
+      run.clear();
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -327,18 +375,21 @@ ParallelPathResult parallel_paths(const ParametricSurface& surface, const std::v
       result.ok = true;
       return result;
     }
-    std::vector<Eigen::Vector2d> next;
+    std::vector<Eigen::Vector2d> offsets;
+    std::vector<bool> inside;
     const std::vector<Eigen::Vector2d> directions = travel_directions(path, 0.5 * options.spacing_mm);
     path.spacing_mm = smoothed_targets(surface, path, directions, options);
     for (std::size_t i = 0; i < path.uv.size(); ++i) {
       Eigen::Vector2d x;
       bool exact = false;
-      if (offset_point_by(surface, path.uv[i], directions[i], options, &x, &path.spacing_mm[i], &exact)) {
-        next.push_back(x);
-        if (exact) ++result.newton_offsets;
-      }
+      const bool in = offset_point_by(surface, path.uv[i], directions[i], options, &x, &path.spacing_mm[i], &exact);
+      if (!x.allFinite()) continue;
+      offsets.push_back(x);
+      inside.push_back(in);
+      if (exact) ++result.newton_offsets;
     }
     result.paths.push_back(std::move(path));
+    const std::vector<Eigen::Vector2d> next = clip_to_domain(offsets, inside, surface.domain());
     polyline = remove_loops(next, &result.loops_removed, &result.points_in_loops);
     if (polyline.size() < 2) {
       result.termination = "the next path left the surface";

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -33,9 +34,15 @@ struct Search {
   const IntersectionOptions& options;
   std::vector<IntersectionPoint> leaves;
   bool overflow = false;
+  std::size_t box_pairs = 0;
+  bool work_overflow = false;
 
   void recurse(const Piece& a, const Piece& b, int depth) {
-    if (overflow || !a.box.intersects(b.box)) return;
+    if (overflow || work_overflow || !a.box.intersects(b.box)) return;
+    if (++box_pairs > options.max_box_pairs) {  // bounded work whatever the input (a spike of 65 m, say)
+      work_overflow = true;
+      return;
+    }
     const bool a_small = a.box.diagonal().norm() <= options.tolerance_mm || depth >= options.max_depth;
     const bool b_small = b.box.diagonal().norm() <= options.tolerance_mm || depth >= options.max_depth;
     if (a_small && b_small) {
@@ -61,6 +68,102 @@ struct Search {
     }
   }
 };
+
+// A bounding-volume tree over boxes (median split along the longest axis, leaves of up to 4): the patches of one
+// network that a box of the other overlaps, in O(log n + hits) instead of a loop over all of them.
+class BoxTree {
+ public:
+  explicit BoxTree(std::vector<Eigen::AlignedBox3d> boxes) : boxes_(std::move(boxes)) {
+    order_.resize(boxes_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = static_cast<int>(k);
+    nodes_.reserve(2 * boxes_.size() / 3 + 2);
+    if (!boxes_.empty()) build(0, static_cast<int>(boxes_.size()));
+  }
+  // Calls visit(index) for every box overlapping `box`, in increasing index order within a leaf.
+  template <class Visit>
+  void query(const Eigen::AlignedBox3d& box, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    std::vector<int> stack = {0};
+    while (!stack.empty()) {
+      const Node& node = nodes_[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (!node.box.intersects(box)) continue;
+      if (node.left < 0) {
+        for (int k = node.first; k < node.first + node.count; ++k) {
+          const int index = order_[static_cast<std::size_t>(k)];
+          if (boxes_[static_cast<std::size_t>(index)].intersects(box)) visit(index);
+        }
+      } else {
+        stack.push_back(node.right);
+        stack.push_back(node.left);
+      }
+    }
+  }
+
+ private:
+  struct Node {
+    Eigen::AlignedBox3d box;
+    int left = -1, right = -1, first = 0, count = 0;
+  };
+  int build(int first, int count) {
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back({});
+    Eigen::AlignedBox3d box;
+    for (int k = first; k < first + count; ++k) box.extend(boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])]);
+    nodes_[static_cast<std::size_t>(id)].box = box;
+    if (count <= 4) {
+      nodes_[static_cast<std::size_t>(id)].first = first;
+      nodes_[static_cast<std::size_t>(id)].count = count;
+      return id;
+    }
+    Eigen::Index axis = 0;
+    box.sizes().maxCoeff(&axis);
+    const auto begin = order_.begin() + first, mid = begin + count / 2, end = begin + count;
+    std::nth_element(begin, mid, end, [&](int x, int y) {
+      const double cx = boxes_[static_cast<std::size_t>(x)].center()[axis], cy = boxes_[static_cast<std::size_t>(y)].center()[axis];
+      return cx < cy || (cx == cy && x < y);
+    });
+    const int left = build(first, count / 2);
+    const int right = build(first + count / 2, count - count / 2);
+    nodes_[static_cast<std::size_t>(id)].left = left;
+    nodes_[static_cast<std::size_t>(id)].right = right;
+    return id;
+  }
+  std::vector<Eigen::AlignedBox3d> boxes_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+};
+
+// Points hashed by the integer cell of size `cell` they fall in: neighbours within a cell in O(1).
+struct CellKey {
+  long x, y, z;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct CellHash {
+  std::size_t operator()(const CellKey& k) const {
+    return static_cast<std::size_t>(k.x * 73856093L) ^ static_cast<std::size_t>(k.y * 19349663L) ^
+           static_cast<std::size_t>(k.z * 83492791L);
+  }
+};
+CellKey cell_of(const Eigen::Vector3d& p, double cell) {
+  return {std::lround(std::floor(p.x() / cell)), std::lround(std::floor(p.y() / cell)), std::lround(std::floor(p.z() / cell))};
+}
+using CellMap = std::unordered_map<CellKey, std::vector<std::size_t>, CellHash>;
+
+// Calls visit(k) for every hashed point in the 27 cells around p.
+template <class Visit>
+void around(const CellMap& map, const Eigen::Vector3d& p, double cell, Visit&& visit) {
+  const CellKey c = cell_of(p, cell);
+  for (long dx = -1; dx <= 1; ++dx) {
+    for (long dy = -1; dy <= 1; ++dy) {
+      for (long dz = -1; dz <= 1; ++dz) {
+        const auto it = map.find({c.x + dx, c.y + dy, c.z + dz});
+        if (it == map.end()) continue;
+        for (std::size_t k : it->second) visit(k);
+      }
+    }
+  }
+}
 
 // Rows: an orthonormal frame whose third axis is the patch's normal at its centre (identity if degenerate).
 Eigen::Matrix3d local_frame(const BezierPatch& patch) {
@@ -111,10 +214,13 @@ std::vector<IntersectionPoint> thin(std::vector<IntersectionPoint> points, doubl
     cells.emplace(key, p);
   }
   std::vector<IntersectionPoint> kept;
+  CellMap hashed;
   for (const auto& [key, p] : cells) {
     bool near = false;
-    for (std::size_t k = kept.size(); k-- > 0 && !near;) near = (kept[k].position - p.position).norm() < cell;
-    if (!near) kept.push_back(p);
+    around(hashed, p.position, cell, [&](std::size_t k) { near = near || (kept[k].position - p.position).norm() < cell; });
+    if (near) continue;
+    hashed[cell_of(p.position, cell)].push_back(kept.size());
+    kept.push_back(p);
   }
   return kept;
 }
@@ -132,6 +238,7 @@ bool IntersectionOptions::IsValid(std::string* error) const {
   if (max_depth < 1 || max_depth > 60) return fail("intersection max_depth must be in [1, 60]");
   if (!(link_factor >= 1.5)) return fail("intersection link_factor must be >= 1.5");
   if (max_leaf_pairs < 1) return fail("intersection max_leaf_pairs must be >= 1");
+  if (max_box_pairs < 1) return fail("intersection max_box_pairs must be >= 1");
   return true;
 }
 
@@ -148,24 +255,38 @@ IntersectionResult intersect_surfaces(const BezierNetwork& a, const BezierNetwor
   if (!options.IsValid(&error)) throw Error(error);
   // Top-level pairs by world boxes; each overlapping pair is then recursed in a frame whose z is the normal of the
   // second patch at its centre, where a gently curved patch has a thin box.
-  Search search{options, {}, false};
-  for (int ra = 0; ra < a.patch_rows(); ++ra) {
+  Search search{options, {}, false, 0, false};
+  std::vector<Eigen::AlignedBox3d> boxes_b;
+  boxes_b.reserve(static_cast<std::size_t>(b.patch_rows()) * static_cast<std::size_t>(b.patch_cols()));
+  for (int rb = 0; rb < b.patch_rows(); ++rb) {
+    for (int cb = 0; cb < b.patch_cols(); ++cb) boxes_b.push_back(b.patch(rb, cb).bounds());
+  }
+  const BoxTree tree(std::move(boxes_b));
+  std::vector<int> hits;
+  for (int ra = 0; ra < a.patch_rows() && !search.work_overflow; ++ra) {
     for (int ca = 0; ca < a.patch_cols(); ++ca) {
       const BezierPatch& pa = a.patch(ra, ca);
-      const Eigen::AlignedBox3d box_a = pa.bounds();
-      for (int rb = 0; rb < b.patch_rows(); ++rb) {
-        for (int cb = 0; cb < b.patch_cols(); ++cb) {
-          const BezierPatch& pb = b.patch(rb, cb);
-          if (!box_a.intersects(pb.bounds())) continue;
-          const Eigen::Matrix3d R = local_frame(pb);
-          search.recurse(make_piece(pa.transformed(R, Eigen::Vector3d::Zero()), ca, ca + 1, ra, ra + 1),
-                         make_piece(pb.transformed(R, Eigen::Vector3d::Zero()), cb, cb + 1, rb, rb + 1), 0);
-        }
+      hits.clear();
+      tree.query(pa.bounds(), [&](int k) { hits.push_back(k); });
+      std::sort(hits.begin(), hits.end());  // the same order as a loop over all pairs: deterministic output
+      for (int k : hits) {
+        const int rb = k / b.patch_cols(), cb = k % b.patch_cols();
+        const BezierPatch& pb = b.patch(rb, cb);
+        const Eigen::Matrix3d R = local_frame(pb);
+        search.recurse(make_piece(pa.transformed(R, Eigen::Vector3d::Zero()), ca, ca + 1, ra, ra + 1),
+                       make_piece(pb.transformed(R, Eigen::Vector3d::Zero()), cb, cb + 1, rb, rb + 1), 0);
       }
     }
   }
   IntersectionResult result;
   result.leaf_pairs = search.leaves.size();
+  result.box_pairs = search.box_pairs;
+  if (search.work_overflow) {
+    result.work_limit_hit = true;
+    result.termination = "more than " + std::to_string(options.max_box_pairs) +
+                         " box pairs examined (limit max_box_pairs): an outlier or a surface folded on itself";
+    return result;
+  }
   if (search.overflow) {
     result.termination = "more than " + std::to_string(options.max_leaf_pairs) +
                          " leaf pairs: the surfaces nearly coincide; offset one of them (a depth threshold)";
@@ -194,15 +315,18 @@ IntersectionResult intersect_surfaces(const BezierNetwork& a, const BezierNetwor
 namespace {
 
 // Greedy nearest-neighbour chaining: grow from the first unused point forwards, then backwards from its start.
+// Neighbours come from a hash of cells of size `link`: O(n) for the whole chaining.
 std::vector<IntersectionCurve> chain(const std::vector<IntersectionPoint>& points, double link) {
   std::vector<bool> used(points.size(), false);
+  CellMap hashed;
+  for (std::size_t k = 0; k < points.size(); ++k) hashed[cell_of(points[k].position, link)].push_back(k);
   auto nearest = [&](const Eigen::Vector3d& from) {
     int best = -1;
     double best_d = link;
-    for (std::size_t k = 0; k < points.size(); ++k) {
+    around(hashed, from, link, [&](std::size_t k) {
       const double d = (points[k].position - from).norm();
-      if (!used[k] && d <= best_d) best = static_cast<int>(k), best_d = d;
-    }
+      if (!used[k] && (d < best_d || (d == best_d && static_cast<int>(k) < best))) best = static_cast<int>(k), best_d = d;
+    });
     return best;
   };
   std::vector<IntersectionCurve> curves;

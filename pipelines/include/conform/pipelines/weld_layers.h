@@ -10,6 +10,9 @@
 
 namespace conform {
 
+// Per grid (the Bézier network keeps ~400 bytes a node): a larger grid is refused before it is fitted (exit 2).
+constexpr long kMaxWeldGridNodes = 1100000;
+
 struct WeldLayersJobOptions {
   std::string eroded_path;     // eroded grid CSV
   std::string reference_path;  // reference grid CSV; empty: the Coons patch of the eroded grid's border

@@ -80,6 +80,9 @@ bool offset_point_by(const ParametricSurface& surface, const Eigen::Vector2d& uv
 // between are deleted and the crossing point kept. *loops, *points count what was removed.
 std::vector<Eigen::Vector2d> remove_loops(const std::vector<Eigen::Vector2d>& polyline, std::size_t* loops,
                                           std::size_t* points);
+// Cuts every point where the polyline turns back by more than 90 degrees (a cusp: the bead would reverse on itself)
+// or repeats its predecessor, until none is left; uv (same length) loses the same points. Returns how many.
+std::size_t remove_cusps(std::vector<Eigen::Vector3d>* points, std::vector<Eigen::Vector2d>* uv);
 // Whether two non-adjacent segments of the polyline cross.
 bool self_intersects(const std::vector<Eigen::Vector2d>& polyline);
 

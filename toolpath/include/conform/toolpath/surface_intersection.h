@@ -4,7 +4,8 @@
 // (convex-hull property), so both are split at (0.5, 0.5) and the overlapping sub-pairs recursed into, down to pieces
 // smaller than the tolerance. Each surviving leaf pair gives a point, moved by Newton's method onto the exact
 // intersection of the two surfaces; the points are then thinned and chained into curves, closed where the chain
-// returns to its start: a crater rim. Each pair's boxes are taken in a frame whose z is the second patch's normal,
+// returns to its start: a crater rim. The pairs to start from come from a box tree over the second network's
+// patches (O(n log n), not all pairs); the work is bounded by max_box_pairs. Each pair's boxes are taken in a frame whose z is the second patch's normal,
 // which hugs a gently curved sheet far tighter than world axes.
 
 #include <cstddef>
@@ -23,6 +24,7 @@ struct IntersectionOptions {
   int max_depth = 30;          // subdivision levels per patch, a safety net
   double link_factor = 4.0;    // neighbours on a curve: points closer than link_factor x tolerance
   std::size_t max_leaf_pairs = 2000000;  // stop (not ok) beyond this many leaf pairs: near-coincident surfaces
+  std::size_t max_box_pairs = 50000000;  // stop (not ok, work_limit_hit) beyond this many box pairs examined
 
   bool IsValid(std::string* error) const;
 };
@@ -44,6 +46,8 @@ struct IntersectionResult {
   std::string termination = "not run";
   std::vector<IntersectionCurve> curves;  // closed ones first, then by size (deterministic)
   std::size_t leaf_pairs = 0;             // box pairs that reached the tolerance
+  std::size_t box_pairs = 0;              // box pairs examined (the work done)
+  bool work_limit_hit = false;            // max_box_pairs reached: no curves
   std::size_t points = 0;                 // points after thinning
   std::size_t unrefined = 0;              // leaf pairs Newton found no intersection near (dropped when refining)
   double max_gap_mm = 0.0;                // max |A(uv_a) - B(uv_b)| over the points

@@ -1,17 +1,20 @@
 #pragma once
 // Weld layers that refill eroded craters (Simas, Dias & Guenther; the ROBOTURB turbine-blade repair):
-//   1. depth of the eroded surface below the reference at the eroded grid points (closest points, Newton) -> the
-//      measurement noise (robust: 1.4826 x median absolute deviation) and which side of the reference is "inside";
-//   2. the damaged area's boundary: the eroded surface intersected with the reference offset inward by a depth
-//      threshold (default 6 x the noise, at least 0.01 mm; 0: the plain intersection), by recursive subdivision
-//      (surface_intersection.h); the closed curves are the crater rims;
-//   3. parallel paths at half the bead spacing dc/2 over the rims' parameter box (parallel_paths.h), from an
-//      iso-parametric reference path along u, on the eroded grid smoothed by a few binomial passes (curvature, a
-//      second derivative, would follow the noise and make the paths wiggle and loop);
-//   4. layer k (1, 2, ...) takes the odd half-step paths when k is odd and the even ones when k is even, so the
-//      beads of one layer sit between those of the one below; each path is clipped to where the point lies inside
-//      a rim and the crater is still deeper than (k - 1) cd there; the layer lies (k - 1) cd above the eroded
-//      surface along its outward normal.
+//   1. the damage map (damage_map.h): depth of every eroded grid node below the reference, registration bias (offset,
+//      tilt: a failure unless removed or kept on purpose), noise from local residuals, the damage side by volume, the
+//      damaged regions (connected nodes deeper than the threshold): every crater, at the border or not;
+//   2. the rims (paper, section 2): the eroded surface intersected with the reference offset inward by the threshold,
+//      by recursive subdivision from a box tree (surface_intersection.h); a rim may be closed, or closed along the
+//      grid's border; a region that no rim bounds is a dropped crater (not ok);
+//   3. per region and layer k, on that layer's own surface (the eroded nodes lifted (k - 1) cd along the reference's
+//      outward normal: a vertical fill, which does not focus in deep craters as a lift along the eroded normal does),
+//      parallel paths at dc/2 (parallel_paths.h, Eq. 1-9) from an iso-parametric line dc/2 before the region, on the
+//      layer surface smoothed by a few binomial passes (Eq. 5 needs curvature, which the noise would dominate);
+//   4. layer k takes the odd half-step paths when k is odd and the even ones when k is even; each is clipped along
+//      its curve (densely, not at its step points) to where the layer's remaining depth exceeds the threshold, cusps
+//      are cut, and the pieces are re-stepped by Eq. (1) on the unsmoothed layer surface, where the points lie and the
+//      chord error is measured;
+//   5. coverage against the damage: the share of the damaged nodes within dc/2 of a layer-1 path.
 
 #include <cstddef>
 #include <string>
@@ -20,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "conform/fitting/bezier_network.h"
+#include "conform/toolpath/damage_map.h"
 #include "conform/toolpath/surface_intersection.h"
 
 namespace conform {
@@ -27,21 +31,30 @@ namespace conform {
 struct WeldLayerOptions {
   double bead_spacing_mm = 0.0;     // dc: distance between neighbouring beads of a layer, mm; required
   double layer_height_mm = 0.0;     // cd: height of one layer, mm; required
-  double chord_error_mm = 0.0;      // delta: max chord error of a path step, mm; required
-  double torch_distance_mm = 0.0;   // w: torch-to-surface distance for Eq. (5), mm
-  int layers = 0;                   // 0: enough to fill the deepest crater, ceil(max depth / cd)
-  double depth_threshold_mm = -1.0; // < 0: 6 x the estimated noise (>= 0.01 mm); 0: plain intersection
+  double chord_error_mm = 0.0;      // delta: max chord error of a path step, mm; required, <= dc / 2
+  double torch_distance_mm = 0.0;   // w: torch-to-surface distance for Eq. (5), mm, <= kMaxTorchDistanceMm
+  int layers = 0;                   // 0: enough to fill the deepest crater, ceil((max depth - t) / cd)
+  double depth_threshold_mm = -1.0; // t: < 0: 6 x the estimated noise (>= 0.01 mm); 0: any depth
+  int outward_side = 0;             // 0: the damage side from the data; +1 / -1: the torch is on the side of the
+                                    // reference's r_u x r_v / the other side
+  BiasMode bias = BiasMode::kCheck; // a registration bias: fail (check), subtract (remove) or keep as damage
+  double min_coverage_pct = 90.0;   // below: not ok (the damage is not refilled)
   double intersection_tolerance_mm = 0.0;  // 0: dc / 10
   double max_step_mm = 0.0;                // 0: 2 dc
-  int smoothing_passes = 3;                // binomial passes over the eroded grid for the paths (not the rims)
+  int smoothing_passes = 3;                // binomial passes over a layer's grid for its curvature (not its points)
 
   bool IsValid(std::string* error) const;
 };
 
+constexpr int kMaxWeldLayers = 200;            // more is a wrong layer height (bad input, exit 2)
+constexpr double kMaxTorchDistanceMm = 100.0;  // Eq. (5) for torch distances beyond this is not a weld torch
+constexpr int kMaxHalfStepPaths = 20000;       // per region and layer; more: bad input (dc against the area)
+
 struct WeldPath {
-  int layer = 0;  // 1-based
-  int path = 0;   // 1-based within its layer
-  std::vector<Eigen::Vector3d> points;   // mm, on the layer ((k - 1) cd above the eroded surface)
+  int layer = 0;   // 1-based
+  int path = 0;    // 1-based within its layer
+  int region = 0;  // the damaged region (crater) it refills, 1-based
+  std::vector<Eigen::Vector3d> points;   // mm, on the layer's surface ((k - 1) cd above the eroded surface)
   std::vector<Eigen::Vector3d> normals;  // outward unit normals (towards the torch)
   double length_mm() const;
 };
@@ -49,28 +62,37 @@ struct WeldPath {
 struct WeldLayerResult {
   bool ok = false;
   std::string termination = "not run";
-  double noise_mm = 0.0;            // estimated measurement noise (1 sigma)
-  double depth_threshold_mm = 0.0;  // the one used
-  bool threshold_estimated = false; // true when it came from the noise
-  double max_depth_mm = 0.0;        // deepest eroded grid point below the reference
-  std::vector<IntersectionCurve> rims;  // closed boundaries of the damaged area (on the eroded surface)
-  std::size_t open_curves = 0;          // intersection curves that did not close (ignored)
+  std::vector<std::string> warnings;  // what a user must know even when ok
+  DamageMap damage;                   // the depth map, bias, noise, side and regions
+  double noise_mm = 0.0;              // = damage.noise_mm
+  double depth_threshold_mm = 0.0;    // = damage.threshold_mm
+  bool threshold_estimated = false;
+  double max_depth_mm = 0.0;
+  std::vector<IntersectionCurve> rims;  // closed curves, then those closed along the grid's border (not `closed`)
+  std::size_t border_rims = 0;          // rims closed along the border
+  std::size_t open_curves = 0;          // pieces that end inside the grid (broken rims)
+  std::vector<int> regions_without_rim; // region ids no rim bounds
+  std::size_t box_pairs = 0;            // the intersection's work
   int layers = 0;
-  std::size_t half_step_paths = 0;      // parallel paths at dc / 2 before clipping
-  std::vector<WeldPath> paths;          // by layer, then along the stepping direction
+  std::size_t half_step_paths = 0;      // parallel paths at dc / 2 before clipping, all regions and layers
+  std::vector<WeldPath> paths;          // by region, layer, then along the stepping direction
+  std::vector<int> paths_per_layer;
   double total_length_mm = 0.0;
-  double spacing_error_pct_max = 0.0;   // neighbouring half-step paths inside the rims vs their target g
-  double chord_error_mm_max = 0.0;      // over every path step
-  // Per layer: % of its region (inside the rims, deeper than (k - 1) cd) within 0.55 x the local bead spacing of
-  // one of its paths (0 for a layer without paths), and the worst of them.
-  std::vector<double> coverage_pct;
+  double spacing_error_pct_max = 0.0;   // neighbouring half-step paths inside the regions vs their target g
+  double chord_error_mm_max = 0.0;      // over every path step, on the surface its points lie on
+  double damage_coverage_pct = 0.0;     // damaged nodes within dc / 2 of a layer-1 path
+  std::vector<double> coverage_pct;     // per layer: its region (remaining depth > t) within dc / 2 of its paths
   double coverage_pct_min = 0.0;
   std::size_t loops_removed = 0;
+  std::size_t cusps_removed = 0;
   std::size_t newton_offsets = 0;
+  bool max_paths_reached = false;
 };
 
-// Throws conform::Error when the options are not valid. ok = false (with the reason in termination) when no damage
-// is found or no rim closes.
+// Throws conform::Error when the options are not valid, a limit is hit (layers, paths, intersection work: the message
+// names it) or a node lies implausibly far from the reference. ok = false (the reason in termination) when no damage
+// is found, the bias is significant in check mode, the side is ambiguous, a region has no rim, a layer that should
+// have paths has none, max paths are reached or the damage coverage is below min_coverage_pct.
 WeldLayerResult plan_weld_layers(const BezierNetwork& eroded, const BezierNetwork& reference,
                                  const WeldLayerOptions& options);
 

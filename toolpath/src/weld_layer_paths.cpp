@@ -1,0 +1,183 @@
+#include "weld_layer_paths.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include "conform/core/error.h"
+#include "conform/fitting/surface_grid.h"
+#include "conform/toolpath/parallel_paths.h"
+
+namespace conform::detail {
+namespace {
+
+// `passes` binomial [1 2 1] / 4 passes along rows and columns (ends kept): the paths' Eq. (5) uses curvature, a
+// second derivative that the measurement noise would dominate.
+SurfaceGrid smoothed(SurfaceGrid grid, int passes) {
+  for (int pass = 0; pass < passes; ++pass) {
+    SurfaceGrid next = grid;
+    for (int r = 0; r < grid.rows; ++r) {
+      for (int c = 1; c + 1 < grid.cols; ++c) next.at(r, c) = 0.25 * (grid.at(r, c - 1) + 2.0 * grid.at(r, c) + grid.at(r, c + 1));
+    }
+    grid = next;
+    for (int r = 1; r + 1 < grid.rows; ++r) {
+      for (int c = 0; c < grid.cols; ++c) next.at(r, c) = 0.25 * (grid.at(r - 1, c) + 2.0 * grid.at(r, c) + grid.at(r + 1, c));
+    }
+    grid = next;
+  }
+  return grid;
+}
+
+// One layer over a sub-grid [r0, r1] x [c0, c1] of the eroded grid: its surface (raw and smoothed) and its remaining
+// depth below the threshold as a scalar spline (z of a network over (c, r)), all in sub-grid parameters.
+struct LayerSurface {
+  int r0 = 0, c0 = 0;
+  BezierNetwork raw, smooth, remaining;
+  const DamageMap* map = nullptr;
+  int region = 0;
+
+  // Inside the layer's part of the region: remaining depth > 0, and the cell is not another region's.
+  bool inside(const Eigen::Vector2d& uv) const {
+    if (!(remaining.position(uv.x(), uv.y()).z() > 0.0)) return false;
+    const int c = std::clamp(static_cast<int>(std::floor(uv.x())), 0, raw.patch_cols() - 1) + c0;
+    const int r = std::clamp(static_cast<int>(std::floor(uv.y())), 0, raw.patch_rows() - 1) + r0;
+    bool other = false;
+    for (int dr = 0; dr <= 1; ++dr) {
+      for (int dc = 0; dc <= 1; ++dc) {
+        const int l = map->label[static_cast<std::size_t>((r + dr) * map->cols + c + dc)];
+        if (l == region) return true;
+        other = other || l != 0;
+      }
+    }
+    return !other;
+  }
+};
+
+LayerSurface layer_surface(const BezierNetwork& eroded, const DamageMap& map, int region, double level, double cut,
+                           int r0, int r1, int c0, int c1, int passes) {
+  LayerSurface s;
+  s.r0 = r0, s.c0 = c0, s.map = &map, s.region = region;
+  SurfaceGrid lifted{r1 - r0 + 1, c1 - c0 + 1, {}}, remaining{r1 - r0 + 1, c1 - c0 + 1, {}};
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      const std::size_t k = static_cast<std::size_t>(r * map.cols + c);
+      lifted.points.push_back(eroded.position(c, r) + level * map.outward[k]);
+      remaining.points.emplace_back(c - c0, r - r0, map.depth[k] - cut);
+    }
+  }
+  s.raw = BezierNetwork(lifted);
+  s.smooth = BezierNetwork(smoothed(lifted, passes));
+  s.remaining = BezierNetwork(remaining);
+  return s;
+}
+
+// The runs of a half-step path inside the layer's region, sampled every `ds` mm along its parameter polyline, each
+// run ending on the boundary (bisection between the last sample in and the first out).
+std::vector<std::vector<Eigen::Vector2d>> clip_along(const SurfacePath& path, const LayerSurface& s, double ds) {
+  std::vector<Eigen::Vector2d> samples;
+  for (std::size_t i = 0; i + 1 < path.uv.size(); ++i) {
+    const int pieces = std::max(1, static_cast<int>(std::ceil((path.points[i + 1] - path.points[i]).norm() / ds)));
+    for (int k = 0; k < pieces; ++k) samples.push_back(path.uv[i] + (path.uv[i + 1] - path.uv[i]) * (double(k) / pieces));
+  }
+  if (!path.uv.empty()) samples.push_back(path.uv.back());
+  auto boundary = [&](Eigen::Vector2d in, Eigen::Vector2d out) {
+    for (int it = 0; it < 30; ++it) {
+      const Eigen::Vector2d m = 0.5 * (in + out);
+      (s.inside(m) ? in : out) = m;
+    }
+    return in;
+  };
+  std::vector<std::vector<Eigen::Vector2d>> runs;
+  std::vector<Eigen::Vector2d> run;
+  bool previous = false;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const bool in = s.inside(samples[i]);
+    if (in && !previous && i > 0) run.push_back(boundary(samples[i], samples[i - 1]));
+    if (in) run.push_back(samples[i]);
+    if (!in && previous) {
+      run.push_back(boundary(samples[i - 1], samples[i]));
+      runs.push_back(std::move(run));
+      run.clear();
+    }
+    previous = in;
+  }
+  if (run.size() >= 2) runs.push_back(std::move(run));
+  runs.erase(std::remove_if(runs.begin(), runs.end(), [](const auto& r) { return r.size() < 2; }), runs.end());
+  return runs;
+}
+
+}  // namespace
+
+LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int region, int k,
+                     const WeldLayerOptions& options) {
+  LayerPlan plan;
+  const DamageRegion& reg = map.regions[static_cast<std::size_t>(region - 1)];
+  const double dc = options.bead_spacing_mm, level = (k - 1) * options.layer_height_mm, cut = level + map.threshold_mm;
+  int rlo = INT_MAX, rhi = -1, clo = INT_MAX, chi = -1;
+  for (int r = reg.row_min; r <= reg.row_max; ++r) {
+    for (int c = reg.col_min; c <= reg.col_max; ++c) {
+      const std::size_t n = static_cast<std::size_t>(r * map.cols + c);
+      if (map.label[n] != region || !(map.depth[n] > cut)) continue;
+      rlo = std::min(rlo, r), rhi = std::max(rhi, r), clo = std::min(clo, c), chi = std::max(chi, c);
+      plan.region_nodes.push_back(eroded.position(c, r) + level * map.outward[n]);
+    }
+  }
+  if (rhi < 0) return plan;
+  const double su = eroded.derivative(reg.deepest_col, reg.deepest_row, 1, 0).norm();
+  const double sv = eroded.derivative(reg.deepest_col, reg.deepest_row, 0, 1).norm();
+  const int mr = static_cast<int>(std::ceil(dc / sv)) + 2, mc = static_cast<int>(std::ceil(dc / su)) + 2;
+  const int r0 = std::max(0, rlo - mr), r1 = std::min(map.rows - 1, rhi + mr);
+  const int c0 = std::max(0, clo - mc), c1 = std::min(map.cols - 1, chi + mc);
+  const LayerSurface s = layer_surface(eroded, map, region, level, cut, r0, r1, c0, c1, options.smoothing_passes);
+  const double height_mm = (r1 - r0) * sv, estimate = std::ceil(height_mm / (0.5 * dc)) * 2.0 + 10.0;
+  if (estimate > kMaxHalfStepPaths) {
+    throw Error("weld layers: region " + std::to_string(region) + " needs about " + std::to_string(int(estimate)) +
+                " half-step paths (limit kMaxHalfStepPaths " + std::to_string(kMaxHalfStepPaths) +
+                "): the bead spacing is too small for the area");
+  }
+  ParallelPathOptions po;
+  po.spacing_mm = 0.5 * dc;
+  po.torch_distance_mm = options.torch_distance_mm;
+  po.chord_error_mm = options.chord_error_mm;
+  po.max_step_mm = options.max_step_mm > 0.0 ? options.max_step_mm : 2.0 * dc;
+  const ParameterDomain d = s.smooth.domain();
+  const Eigen::Vector2d centre(0.5 * d.u_max, 0.5 * d.v_max);
+  const Eigen::Vector3d out = map.outward[static_cast<std::size_t>(reg.deepest_row * map.cols + reg.deepest_col)];
+  po.normal_sign = s.smooth.normal(centre.x(), centre.y()).dot(out) >= 0.0 ? 1 : -1;
+  po.side = 1;
+  po.max_paths = static_cast<int>(estimate);
+  // The first path of layer 1 (half-step path 1) on the region's lower edge, half-step path 0 dc/2 before it.
+  const double v_start = std::max(0.0, (rlo - r0) - 0.5 - 0.5 * po.spacing_mm / sv);
+  const ParallelPathResult half = parallel_paths(s.smooth, {{d.u_min, v_start}, {d.u_max, v_start}}, po);
+  plan.half_step_paths = half.paths.size();
+  plan.loops_removed = half.loops_removed;
+  plan.newton_offsets = half.newton_offsets;
+  plan.max_paths_reached = half.termination == "max_paths reached";
+  for (std::size_t j = 0; j + 1 < half.paths.size(); ++j) {
+    const double e = spacing_error_pct_max(s.smooth, half.paths[j], half.paths[j + 1],
+                                           [&](const Eigen::Vector2d& uv) { return s.inside(uv); });
+    plan.spacing_error_pct_max = std::max(plan.spacing_error_pct_max, e);
+  }
+  const double ds = std::min(0.25 * dc, 0.5 * std::min(su, sv));
+  ParallelPathOptions step = po;
+  for (std::size_t j = (k % 2 == 1) ? 1 : 2; j < half.paths.size(); j += 2) {
+    for (std::vector<Eigen::Vector2d>& run : clip_along(half.paths[j], s, ds)) {
+      std::vector<Eigen::Vector3d> points;
+      for (const Eigen::Vector2d& uv : run) points.push_back(s.raw.position(uv.x(), uv.y()));
+      plan.cusps_removed += conform::remove_cusps(&points, &run);
+      if (run.size() < 2) continue;
+      SurfacePath stepped = step_along(s.raw, run, step, &plan.chord_error_mm_max);
+      plan.cusps_removed += conform::remove_cusps(&stepped.points, &stepped.uv);
+      if (stepped.points.size() < 2) continue;
+      WeldPath path;
+      path.layer = k;
+      path.region = region;
+      path.points = stepped.points;
+      for (const Eigen::Vector2d& uv : stepped.uv) path.normals.push_back(po.normal_sign * s.smooth.normal(uv.x(), uv.y()));
+      plan.paths.push_back(std::move(path));
+    }
+  }
+  return plan;
+}
+
+}  // namespace conform::detail
