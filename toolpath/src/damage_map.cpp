@@ -77,8 +77,21 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
   const Eigen::Vector3d z = mean_normal.normalized();
   plane.e1 = (std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(z).normalized();
   plane.e2 = z.cross(plane.e1);
-  std::vector<bool> in = s.valid;
-  for (int iteration = 0; iteration < 6; ++iteration) {
+  std::vector<double> valid_d;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (s.valid[i]) valid_d.push_back(s.d[i]);
+  }
+  plane.a = median_of(valid_d);  // a robust start: the level most nodes agree on
+  std::vector<bool> in(points.size(), false);
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    std::vector<double> residual;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (s.valid[i]) residual.push_back(s.d[i] - plane.at(points[i]));
+    }
+    const double centre = median_of(residual), limit = std::max(3.0 * robust_sigma(residual), 1e-9);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      in[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i]) - centre) <= limit;
+    }
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -90,31 +103,42 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
     const Eigen::Vector3d sol = A.ldlt().solve(rhs);
     if (!sol.allFinite()) break;
     plane.a = sol[0], plane.b = sol.tail<2>();
-    std::vector<double> residual;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (s.valid[i]) residual.push_back(s.d[i] - plane.at(points[i]));
-    }
-    const double limit = std::max(3.0 * robust_sigma(residual), 1e-9);
-    for (std::size_t i = 0; i < points.size(); ++i) in[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i])) <= limit;
   }
   return plane;
 }
 
-// Step 3: sigma of the local residuals d - mean of the 4 neighbours (white noise: variance 5/4 sigma^2).
-double local_noise(const std::vector<double>& d, const std::vector<bool>& valid, int rows, int cols) {
-  std::vector<double> residual;
+// Step 3: sigma of the local residuals e = d - mean of the 4 neighbours (white noise: variance 5/4 sigma^2), by the
+// median of |e|. A crater's curvature gives its nodes residuals of ~h^2/4 |Laplacian|, which would still pull the
+// median up when craters cover a good share of the grid: a second pass leaves out the nodes beyond 6 first-pass sigmas
+// from the bias plane (and their neighbours), the features, and takes the median over the rest.
+double local_noise(const std::vector<double>& d, const std::vector<double>& plane, const std::vector<bool>& valid,
+                   int rows, int cols) {
   auto at = [&](int r, int c) { return static_cast<std::size_t>(r * cols + c); };
-  for (int r = 1; r + 1 < rows; ++r) {
-    for (int c = 1; c + 1 < cols; ++c) {
-      const std::size_t k[5] = {at(r, c), at(r - 1, c), at(r + 1, c), at(r, c - 1), at(r, c + 1)};
-      if (!(valid[k[0]] && valid[k[1]] && valid[k[2]] && valid[k[3]] && valid[k[4]])) continue;
-      residual.push_back(d[k[0]] - 0.25 * (d[k[1]] + d[k[2]] + d[k[3]] + d[k[4]]));
+  auto sigma = [&](const std::vector<bool>& use) {
+    std::vector<double> magnitude;
+    for (int r = 1; r + 1 < rows; ++r) {
+      for (int c = 1; c + 1 < cols; ++c) {
+        const std::size_t k[5] = {at(r, c), at(r - 1, c), at(r + 1, c), at(r, c - 1), at(r, c + 1)};
+        if (!(use[k[0]] && use[k[1]] && use[k[2]] && use[k[3]] && use[k[4]])) continue;
+        magnitude.push_back(std::abs(d[k[0]] - 0.25 * (d[k[1]] + d[k[2]] + d[k[3]] + d[k[4]])));
+      }
+    }
+    return magnitude.size() < 8 ? -1.0 : kNormalSigma * median_of(std::move(magnitude)) / std::sqrt(1.25);
+  };
+  const double first = std::max(sigma(valid), 0.0);
+  std::vector<bool> quiet = valid;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      if (!valid[at(r, c)] || std::abs(d[at(r, c)] - plane[at(r, c)]) <= 6.0 * first) continue;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if (r + dr >= 0 && c + dc >= 0 && r + dr < rows && c + dc < cols) quiet[at(r + dr, c + dc)] = false;
+        }
+      }
     }
   }
-  if (residual.empty()) return 0.0;
-  std::vector<double> magnitude;
-  for (double x : residual) magnitude.push_back(std::abs(x));
-  return kNormalSigma * median_of(std::move(magnitude)) / std::sqrt(1.25);
+  const double second = sigma(quiet);
+  return second >= 0.0 ? second : first;
 }
 
 // Step 5: 8-connected components of the nodes deeper than the threshold, by decreasing volume.
@@ -214,7 +238,9 @@ DamageMap map_damage(const BezierNetwork& eroded, const BezierNetwork& reference
   }
   map.off_reference = static_cast<std::size_t>(std::count(s.valid.begin(), s.valid.end(), false));
   const Plane plane = bias_plane(points, s);
-  map.noise_mm = local_noise(s.d, s.valid, map.rows, map.cols);
+  std::vector<double> plane_at;
+  for (const Eigen::Vector3d& p : points) plane_at.push_back(plane.at(p));
+  map.noise_mm = local_noise(s.d, plane_at, s.valid, map.rows, map.cols);
   for (const Eigen::Vector3d& p : points) map.bias_span_mm = std::max(map.bias_span_mm, std::abs(plane.at(p)));
   map.bias_tilt_deg = std::atan(plane.b.norm()) * 180.0 / M_PI;
   map.bias_significant = map.bias_span_mm > std::max(options.bias_tolerance_mm, 3.0 * map.noise_mm);

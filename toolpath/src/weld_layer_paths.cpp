@@ -1,7 +1,6 @@
 #include "weld_layer_paths.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 
 #include "conform/core/error.h"
@@ -113,21 +112,20 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   LayerPlan plan;
   const DamageRegion& reg = map.regions[static_cast<std::size_t>(region - 1)];
   const double dc = options.bead_spacing_mm, level = (k - 1) * options.layer_height_mm, cut = level + map.threshold_mm;
-  int rlo = INT_MAX, rhi = -1, clo = INT_MAX, chi = -1;
   for (int r = reg.row_min; r <= reg.row_max; ++r) {
     for (int c = reg.col_min; c <= reg.col_max; ++c) {
       const std::size_t n = static_cast<std::size_t>(r * map.cols + c);
-      if (map.label[n] != region || !(map.depth[n] > cut)) continue;
-      rlo = std::min(rlo, r), rhi = std::max(rhi, r), clo = std::min(clo, c), chi = std::max(chi, c);
-      plan.region_nodes.push_back(eroded.position(c, r) + level * map.outward[n]);
+      if (map.label[n] == region && map.depth[n] > cut) plan.region_nodes.push_back(eroded.position(c, r) + level * map.outward[n]);
     }
   }
-  if (rhi < 0) return plan;
+  if (plan.region_nodes.empty()) return plan;
+  // Every layer of a region works over the region's (layer 1's) box and from the same start line, so that layer k's
+  // half-step paths are layer 1's family lifted and the odd/even interleaving holds from one layer to the next.
   const double su = eroded.derivative(reg.deepest_col, reg.deepest_row, 1, 0).norm();
   const double sv = eroded.derivative(reg.deepest_col, reg.deepest_row, 0, 1).norm();
   const int mr = static_cast<int>(std::ceil(dc / sv)) + 2, mc = static_cast<int>(std::ceil(dc / su)) + 2;
-  const int r0 = std::max(0, rlo - mr), r1 = std::min(map.rows - 1, rhi + mr);
-  const int c0 = std::max(0, clo - mc), c1 = std::min(map.cols - 1, chi + mc);
+  const int r0 = std::max(0, reg.row_min - mr), r1 = std::min(map.rows - 1, reg.row_max + mr);
+  const int c0 = std::max(0, reg.col_min - mc), c1 = std::min(map.cols - 1, reg.col_max + mc);
   const LayerSurface s = layer_surface(eroded, map, region, level, cut, r0, r1, c0, c1, options.smoothing_passes);
   const double height_mm = (r1 - r0) * sv, estimate = std::ceil(height_mm / (0.5 * dc)) * 2.0 + 10.0;
   if (estimate > kMaxHalfStepPaths) {
@@ -146,8 +144,12 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   po.normal_sign = s.smooth.normal(centre.x(), centre.y()).dot(out) >= 0.0 ? 1 : -1;
   po.side = 1;
   po.max_paths = static_cast<int>(estimate);
-  // The first path of layer 1 (half-step path 1) on the region's lower edge, half-step path 0 dc/2 before it.
-  const double v_start = std::max(0.0, (rlo - r0) - 0.5 - 0.5 * po.spacing_mm / sv);
+  // Layer 1's paths (half-step paths 1, 3, ...) centred over the rows of the region's nodes: the outermost nodes are
+  // at most dc / 2 beyond the outermost paths; half-step path 0 (the start line) dc / 2 before the first.
+  const double extent = (reg.row_max - reg.row_min) * sv;
+  const double n_paths = std::floor(extent / dc) + 1.0;
+  const double first = 0.5 * (extent - (n_paths - 1.0) * dc);
+  const double v_start = std::max(0.0, (reg.row_min - r0) + (first - 0.5 * dc) / sv);
   const ParallelPathResult half = parallel_paths(s.smooth, {{d.u_min, v_start}, {d.u_max, v_start}}, po);
   plan.half_step_paths = half.paths.size();
   plan.loops_removed = half.loops_removed;
@@ -160,7 +162,7 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   }
   const double ds = std::min(0.25 * dc, 0.5 * std::min(su, sv));
   ParallelPathOptions step = po;
-  for (std::size_t j = (k % 2 == 1) ? 1 : 2; j < half.paths.size(); j += 2) {
+  for (std::size_t j = (k % 2 == 1) ? 1 : 0; j < half.paths.size(); j += 2) {
     for (std::vector<Eigen::Vector2d>& run : clip_along(half.paths[j], s, ds)) {
       std::vector<Eigen::Vector3d> points;
       for (const Eigen::Vector2d& uv : run) points.push_back(s.raw.position(uv.x(), uv.y()));
