@@ -145,7 +145,7 @@ class WeldLayersCommand : public Command {
     if (w.rims.size() > 6) std::printf(" ...");
     std::printf(", %zu open pieces\n", w.open_curves);
     if (w.layers == 0) return;
-    std::printf("damage cover  %.2f %% (damaged nodes within dc/2 of a layer-1 path)\n", w.damage_coverage_pct);
+    std::printf("damage cover  %.2f %% (damaged nodes within half a bead width of a layer-1 path)\n", w.damage_coverage_pct);
     std::printf("layers        %d, paths %zu (%zu half-step paths before clipping)\n", w.layers, w.paths.size(),
                 w.half_step_paths);
     std::printf("length        %.3f mm in total\n", w.total_length_mm);
@@ -153,7 +153,7 @@ class WeldLayersCommand : public Command {
     std::printf("chord error   max %.6f mm\n", w.chord_error_mm_max);
     std::printf("coverage %%    ");
     for (double pct : w.coverage_pct) std::printf(" %.2f", pct);
-    std::printf("  (by layer: share of its region within dc/2 of its paths)\n");
+    std::printf("  (by layer: share of its region within half a bead width of its paths)\n");
     std::printf("loops removed %zu, cusps removed %zu, Newton offsets %zu\n", w.loops_removed, w.cusps_removed,
                 w.newton_offsets);
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());

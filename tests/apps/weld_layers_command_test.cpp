@@ -53,7 +53,11 @@ TEST_F(WeldLayersCommand, FillsTheGeneratedCrater) {
   EXPECT_GT(j["paths"].get<int>(), 8);
   EXPECT_LT(j["spacing_error_pct_max"].get<double>(), 5.0);
   EXPECT_LE(j["chord_error_mm_max"].get<double>(), 0.05);
-  EXPECT_GT(j["coverage_pct_min"].get<double>(), 90.0);  // the uncovered rest: slivers at the regions' edges
+  EXPECT_GT(j["damage_coverage_pct"].get<double>(), 90.0);  // the uncovered rest: slivers at the regions' edges
+  EXPECT_EQ(j["craters"].size(), 1u);
+  EXPECT_FALSE(j["bias"]["significant"].get<bool>());
+  EXPECT_EQ(j["outward_sign"], 1);
+  EXPECT_EQ(j["warnings"].size(), 0u);
   EXPECT_TRUE(j["depth_threshold_estimated"].get<bool>());
   ASSERT_EQ(j["rims"].size(), 1u);
   const std::string csv = test::read_bytes(dir.file("paths.csv"));
@@ -130,6 +134,49 @@ TEST_F(WeldLayersCommand, BadGridsExitTwoNamingFileAndRow) {
   r = run({"generate", "eroded", "--out", dir.file("x.csv"), "--crater", "0,0,1"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--crater"), std::string::npos);
+  EXPECT_EQ(test::read_bytes(dir.file("paths.csv")), "");
+}
+
+// Issue 17/18: a registration offset fails in check mode (exit 1 naming it) and is removed on request; a border
+// crater is closed along the border; limits on layers, torch distance and outliers exit 2 naming the limit.
+TEST_F(WeldLayersCommand, BiasBorderAndLimits) {
+  test::TempDir dir;
+  auto r = run({"generate", "eroded", "--out", dir.file("b.csv"), "--rows", "21", "--cols", "31", "--length", "60",
+                "--width", "40", "--crater", "0,0,10,1.5", "--crater", "30,-20,9,1", "--reference-offset", "0.3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> args = weld_args(dir, dir.file("b.csv"), dir.file("b.reference.csv"));
+  r = run(args);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("offset -0.2"), std::string::npos) << r.err;  // 0.3 mm along z: ~0.29 along the normal
+  EXPECT_NE(r.err.find("--bias remove"), std::string::npos) << r.err;
+  args.insert(args.end(), {"--bias", "remove"});
+  r = run(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["bias"]["removed"].get<bool>());
+  ASSERT_EQ(j["craters"].size(), 2u);
+  EXPECT_TRUE(j["craters"][1]["at_border"].get<bool>());
+  EXPECT_GE(j["border_rims"].get<int>(), 1);
+  EXPECT_GT(j["damage_coverage_pct"].get<double>(), 90.0);
+  std::vector<std::string> thin = weld_args(dir, eroded(), reference());
+  thin[8] = "0.001";  // --layer-height: 1500 layers
+  r = run(thin);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("kMaxWeldLayers"), std::string::npos) << r.err;
+  std::vector<std::string> far = weld_args(dir, eroded(), reference());
+  far[12] = "1000";  // --torch-distance
+  r = run(far);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("torch distance"), std::string::npos) << r.err;
+  std::string grid = test::read_bytes(eroded());
+  const std::size_t at = grid.find("\n10,15,");  // the centre node: z = 65535 (issue 18)
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = grid.find('\n', at + 1), last = grid.rfind(',', end);
+  grid.replace(last + 1, end - last - 1, "65535");
+  test::write_bytes(dir.file("spike.csv"), grid);
+  r = run(weld_args(dir, dir.file("spike.csv"), reference()));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("max_deviation_mm"), std::string::npos) << r.err;
   EXPECT_EQ(test::read_bytes(dir.file("paths.csv")), "");
 }
 

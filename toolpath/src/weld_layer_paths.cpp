@@ -126,7 +126,11 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   const int mr = static_cast<int>(std::ceil(dc / sv)) + 2, mc = static_cast<int>(std::ceil(dc / su)) + 2;
   const int r0 = std::max(0, reg.row_min - mr), r1 = std::min(map.rows - 1, reg.row_max + mr);
   const int c0 = std::max(0, reg.col_min - mc), c1 = std::min(map.cols - 1, reg.col_max + mc);
-  const LayerSurface s = layer_surface(eroded, map, region, level, cut, r0, r1, c0, c1, options.smoothing_passes);
+  // n binomial passes smooth like a Gaussian of sigma sqrt(n / 2) nodes: dc / 4 for the curvature of Eq. (1) and (5).
+  const double h = std::min(su, sv), auto_passes = std::ceil(2.0 * std::pow(dc / (4.0 * h), 2));
+  const int passes = options.smoothing_passes >= 0 ? options.smoothing_passes
+                                                   : static_cast<int>(std::clamp(auto_passes, 3.0, 50.0));
+  const LayerSurface s = layer_surface(eroded, map, region, level, cut, r0, r1, c0, c1, passes);
   const double height_mm = (r1 - r0) * sv, estimate = std::ceil(height_mm / (0.5 * dc)) * 2.0 + 10.0;
   if (estimate > kMaxHalfStepPaths) {
     throw Error("weld layers: region " + std::to_string(region) + " needs about " + std::to_string(int(estimate)) +
@@ -149,7 +153,10 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   const double extent = (reg.row_max - reg.row_min) * sv;
   const double n_paths = std::floor(extent / dc) + 1.0;
   const double first = 0.5 * (extent - (n_paths - 1.0) * dc);
-  const double v_start = std::max(0.0, (reg.row_min - r0) + (first - 0.5 * dc) / sv);
+  // At the grid's border the start line would lie off the grid: start with layer 1's first path instead.
+  double v_start = (reg.row_min - r0) + (first - 0.5 * dc) / sv;
+  const std::size_t shift = v_start < 0.0 ? 1 : 0;
+  if (shift == 1) v_start = std::max(0.0, v_start + 0.5 * dc / sv);
   const ParallelPathResult half = parallel_paths(s.smooth, {{d.u_min, v_start}, {d.u_max, v_start}}, po);
   plan.half_step_paths = half.paths.size();
   plan.loops_removed = half.loops_removed;
@@ -162,7 +169,9 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   }
   const double ds = std::min(0.25 * dc, 0.5 * std::min(su, sv));
   ParallelPathOptions step = po;
-  for (std::size_t j = (k % 2 == 1) ? 1 : 0; j < half.paths.size(); j += 2) {
+  for (std::size_t j = (k % 2 == 1) ? 1 - shift : shift; j < half.paths.size(); j += 2) {
+    std::vector<double> g = half.paths[j].spacing_mm;
+    const double bead_width = g.empty() ? dc : 2.0 * median_of(std::move(g));
     for (std::vector<Eigen::Vector2d>& run : clip_along(half.paths[j], s, ds)) {
       std::vector<Eigen::Vector3d> points;
       for (const Eigen::Vector2d& uv : run) points.push_back(s.raw.position(uv.x(), uv.y()));
@@ -174,6 +183,7 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
       WeldPath path;
       path.layer = k;
       path.region = region;
+      path.bead_width_mm = bead_width;
       path.points = stepped.points;
       for (const Eigen::Vector2d& uv : stepped.uv) path.normals.push_back(po.normal_sign * s.smooth.normal(uv.x(), uv.y()));
       plan.paths.push_back(std::move(path));

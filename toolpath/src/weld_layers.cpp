@@ -20,17 +20,21 @@ std::string where(const DamageRegion& r) {
          std::to_string(r.deepest_col) + ", " + fixed(r.max_depth_mm) + " mm deep)";
 }
 
-// Densified path points in a kd-tree: the share of some nodes within a radius of the paths.
+// Densified path points in a kd-tree, each with its bead's half width: the share of some nodes that a bead covers.
 class PathCloud {
  public:
-  PathCloud(const std::vector<const WeldPath*>& paths, double radius) : radius_(radius) {
+  explicit PathCloud(const std::vector<const WeldPath*>& paths) {
     for (const WeldPath* path : paths) {
       const auto& p = path->points;
+      const double radius = 0.5 * path->bead_width_mm;
+      max_radius_ = std::max(max_radius_, radius);
       for (std::size_t i = 0; i < p.size(); ++i) {
-        dense_.push_back(p[i]);
+        dense_.push_back(p[i]), radius_.push_back(radius);
         if (i + 1 == p.size()) break;
         const int pieces = static_cast<int>(std::ceil((p[i + 1] - p[i]).norm() / (radius / 8.0)));
-        for (int k = 1; k < pieces; ++k) dense_.push_back(p[i] + (p[i + 1] - p[i]) * (double(k) / pieces));
+        for (int k = 1; k < pieces; ++k) {
+          dense_.push_back(p[i] + (p[i + 1] - p[i]) * (double(k) / pieces)), radius_.push_back(radius);
+        }
       }
     }
     tree_ = std::make_unique<KdTree>(dense_);
@@ -38,17 +42,23 @@ class PathCloud {
   double covered_pct(const std::vector<Eigen::Vector3d>& nodes) const {
     if (nodes.empty()) return 100.0;
     std::size_t covered = 0;
+    std::vector<int> index;
+    std::vector<float> d2;
     for (const Eigen::Vector3d& n : nodes) {
-      float d2 = 1e30f;
-      if (!dense_.empty()) tree_->nearest(n.cast<float>(), &d2);
-      if (std::sqrt(static_cast<double>(d2)) <= radius_) ++covered;
+      tree_->radius(n.cast<float>(), static_cast<float>(max_radius_), index, d2);
+      bool in = false;
+      for (std::size_t k = 0; k < index.size() && !in; ++k) {
+        in = std::sqrt(static_cast<double>(d2[k])) <= radius_[static_cast<std::size_t>(index[k])];
+      }
+      covered += in;
     }
     return 100.0 * static_cast<double>(covered) / static_cast<double>(nodes.size());
   }
 
  private:
-  double radius_;
+  double max_radius_ = 0.0;
   std::vector<Eigen::Vector3d> dense_;
+  std::vector<double> radius_;
   std::unique_ptr<KdTree> tree_;
 };
 
@@ -139,7 +149,6 @@ bool check_damage(const WeldLayerOptions& options, WeldLayerResult* result) {
 void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
            const std::vector<std::vector<Eigen::Vector3d>>& layer_nodes, WeldLayerResult* result) {
   const DamageMap& map = result->damage;
-  const double radius = 0.5 * options.bead_spacing_mm;
   std::vector<std::string> failures;
   result->coverage_pct_min = 100.0;
   for (int k = 1; k <= result->layers; ++k) {
@@ -147,7 +156,7 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
     for (const WeldPath& p : result->paths) {
       if (p.layer == k) layer.push_back(&p);
     }
-    const PathCloud cloud(layer, radius);
+    const PathCloud cloud(layer);
     const std::vector<Eigen::Vector3d>& nodes = layer_nodes[static_cast<std::size_t>(k - 1)];
     const double pct = cloud.covered_pct(nodes);
     result->coverage_pct.push_back(pct);
@@ -232,7 +241,7 @@ bool WeldLayerOptions::IsValid(std::string* error) const {
   if (!(max_step_mm >= 0.0) || !std::isfinite(max_step_mm) || (max_step_mm > 0.0 && max_step_mm <= chord_error_mm)) {
     return fail("max step must be 0 (2 dc) or exceed the chord error");
   }
-  if (smoothing_passes < 0 || smoothing_passes > 50) return fail("smoothing passes must be in [0, 50]");
+  if (smoothing_passes > 50) return fail("smoothing passes must be at most 50 (< 0: from the grid spacing)");
   return true;
 }
 

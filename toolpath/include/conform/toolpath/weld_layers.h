@@ -14,7 +14,8 @@
 //      its curve (densely, not at its step points) to where the layer's remaining depth exceeds the threshold, cusps
 //      are cut, and the pieces are re-stepped by Eq. (1) on the unsmoothed layer surface, where the points lie and the
 //      chord error is measured;
-//   5. coverage against the damage: the share of the damaged nodes within dc/2 of a layer-1 path.
+//   5. coverage against the damage: the share of the damaged nodes within half a bead width of a layer-1 path (the
+//      bead width is dc at the torch, 2 g on the surface by Eq. 5: dc itself when w = 0).
 
 #include <cstddef>
 #include <string>
@@ -41,7 +42,8 @@ struct WeldLayerOptions {
   double min_coverage_pct = 90.0;   // below: not ok (the damage is not refilled)
   double intersection_tolerance_mm = 0.0;  // 0: dc / 10
   double max_step_mm = 0.0;                // 0: 2 dc
-  int smoothing_passes = 3;                // binomial passes over a layer's grid for its curvature (not its points)
+  int smoothing_passes = -1;  // binomial passes over a layer's grid for its curvature (not its points); < 0: enough to
+                              // smooth over dc / 4 (2 (dc / 4h)^2 for grid spacing h, at least 3, at most 50)
 
   bool IsValid(std::string* error) const;
 };
@@ -56,6 +58,7 @@ struct WeldPath {
   int region = 0;  // the damaged region (crater) it refills, 1-based
   std::vector<Eigen::Vector3d> points;   // mm, on the layer's surface ((k - 1) cd above the eroded surface)
   std::vector<Eigen::Vector3d> normals;  // outward unit normals (towards the torch)
+  double bead_width_mm = 0.0;            // the spacing on the surface that dc at the torch gives here (Eq. 5, 2 g)
   double length_mm() const;
 };
 
@@ -80,8 +83,8 @@ struct WeldLayerResult {
   double total_length_mm = 0.0;
   double spacing_error_pct_max = 0.0;   // neighbouring half-step paths inside the regions vs their target g
   double chord_error_mm_max = 0.0;      // over every path step, on the surface its points lie on
-  double damage_coverage_pct = 0.0;     // damaged nodes within dc / 2 of a layer-1 path
-  std::vector<double> coverage_pct;     // per layer: its region (remaining depth > t) within dc / 2 of its paths
+  double damage_coverage_pct = 0.0;     // damaged nodes within half a bead width of a layer-1 path
+  std::vector<double> coverage_pct;     // per layer: its region (remaining depth > t) within half a bead width
   double coverage_pct_min = 0.0;
   std::size_t loops_removed = 0;
   std::size_t cusps_removed = 0;
