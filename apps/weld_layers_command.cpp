@@ -41,7 +41,9 @@ class WeldLayersCommand : public Command {
                  "exit 1), remove (subtract it), keep (refill it as damage)")
         ->check(CLI::IsMember({"check", "remove", "keep"}));
     c.add_option("--min-coverage", o_.weld.min_coverage_pct,
-                 "Least share of the damage within half a bead spacing of a layer-1 path, %; below: exit 1");
+                 "Least share of the damage within half a bead width of a layer-1 path, %; below: exit 1");
+    c.add_option("--min-crater-coverage", o_.weld.min_crater_coverage_pct,
+                 "Least share of any one crater (larger than a bead) covered by layer 1, %; below: exit 1 naming it");
     c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }

@@ -170,7 +170,10 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   const double ds = std::min(0.25 * dc, 0.5 * std::min(su, sv));
   ParallelPathOptions step = po;
   for (std::size_t j = (k % 2 == 1) ? 1 - shift : shift; j < half.paths.size(); j += 2) {
-    std::vector<double> g = half.paths[j].spacing_mm;
+    std::vector<double> g;  // the path's spacing on the surface (Eq. 5) where it crosses the region: its bead width
+    for (std::size_t i = 0; i < half.paths[j].uv.size(); ++i) {
+      if (i < half.paths[j].spacing_mm.size() && s.inside(half.paths[j].uv[i])) g.push_back(half.paths[j].spacing_mm[i]);
+    }
     const double bead_width = g.empty() ? dc : 2.0 * median_of(std::move(g));
     for (std::vector<Eigen::Vector2d>& run : clip_along(half.paths[j], s, ds)) {
       std::vector<Eigen::Vector3d> points;

@@ -185,10 +185,11 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
       const double own_pct = cloud.covered_pct(own);
       if (own_pct >= options.min_coverage_pct) continue;
       const std::string text = where(region) + ": layer 1 covers " + fixed(own_pct, 1) + " % of it";
-      if (region.area_mm2 >= options.bead_spacing_mm * options.bead_spacing_mm) {
+      if (region.area_mm2 >= options.bead_spacing_mm * options.bead_spacing_mm &&
+          own_pct < options.min_crater_coverage_pct) {
         failures.push_back(text);
       } else {
-        result->warnings.push_back(text + " (smaller than a bead)");
+        result->warnings.push_back(text);
       }
     }
     result->damage_coverage_pct = pct;
@@ -235,6 +236,9 @@ bool WeldLayerOptions::IsValid(std::string* error) const {
   if (!std::isfinite(depth_threshold_mm) || depth_threshold_mm > 1000.0) return fail("depth threshold must be finite");
   if (outward_side < -1 || outward_side > 1) return fail("outward side must be -1, 0 (from the data) or +1");
   if (!(min_coverage_pct >= 0.0 && min_coverage_pct <= 100.0)) return fail("minimum coverage must be in [0, 100] %");
+  if (!(min_crater_coverage_pct >= 0.0 && min_crater_coverage_pct <= 100.0)) {
+    return fail("minimum crater coverage must be in [0, 100] %");
+  }
   if (!(intersection_tolerance_mm >= 0.0) || !std::isfinite(intersection_tolerance_mm)) {
     return fail("intersection tolerance must be >= 0 mm");
   }

@@ -39,7 +39,8 @@ struct WeldLayerOptions {
   int outward_side = 0;             // 0: the damage side from the data; +1 / -1: the torch is on the side of the
                                     // reference's r_u x r_v / the other side
   BiasMode bias = BiasMode::kCheck; // a registration bias: fail (check), subtract (remove) or keep as damage
-  double min_coverage_pct = 90.0;   // below: not ok (the damage is not refilled)
+  double min_coverage_pct = 90.0;   // all the damage covered below this by layer 1: not ok (warning per crater)
+  double min_crater_coverage_pct = 75.0;  // one crater (larger than a bead) covered below this: not ok
   double intersection_tolerance_mm = 0.0;  // 0: dc / 10
   double max_step_mm = 0.0;                // 0: 2 dc
   int smoothing_passes = -1;  // binomial passes over a layer's grid for its curvature (not its points); < 0: enough to
