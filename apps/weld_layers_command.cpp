@@ -100,6 +100,8 @@ class WeldLayersCommand : public Command {
             {"regions_without_rim", w.regions_without_rim},
             {"cusps_removed", w.cusps_removed},
             {"max_paths_reached", w.max_paths_reached},
+            {"path_crossings", w.path_crossings},
+            {"crossings_cut", w.crossings_cut},
             {"intersection_box_pairs", w.box_pairs},
             {"layers", w.layers},
             {"paths", w.paths.size()},
@@ -156,8 +158,8 @@ class WeldLayersCommand : public Command {
     std::printf("coverage %%    ");
     for (double pct : w.coverage_pct) std::printf(" %.2f", pct);
     std::printf("  (by layer: share of its region within half a bead width of its paths)\n");
-    std::printf("loops removed %zu, cusps removed %zu, Newton offsets %zu\n", w.loops_removed, w.cusps_removed,
-                w.newton_offsets);
+    std::printf("loops removed %zu, cusps removed %zu, crossings cut %zu, Newton offsets %zu\n", w.loops_removed,
+                w.cusps_removed, w.crossings_cut, w.newton_offsets);
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
   }
 

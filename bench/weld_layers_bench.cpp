@@ -137,7 +137,7 @@ std::size_t all_pairs_overlaps(const BezierNetwork& a, const BezierNetwork& b) {
 }
 
 void grid_sizes() {
-  std::printf("\ngrid size vs time: weld-layers plan (dc 3, cd 1, delta 0.05, w 10 mm), CPU s, best of 1\n");
+  std::printf("\ngrid size vs time: weld-layers plan (dc 3, cd 1, delta 0.05, w 2 mm), CPU s, best of 1\n");
   std::printf("%-12s %-12s %10s %10s %10s %8s %8s %14s\n", "eroded", "reference", "plan s", "all-pairs", "box pairs",
               "paths", "cover %", "status");
   const int sizes[][4] = {{41, 61, 41, 61}, {121, 181, 121, 181}, {201, 301, 201, 301}, {301, 301, 501, 501}};
@@ -151,7 +151,7 @@ void grid_sizes() {
     const BezierNetwork eroded(SurfaceGrid{e.rows, e.cols, e.eroded});
     const BezierNetwork reference(SurfaceGrid{r.rows, r.cols, r.reference});
     WeldLayerOptions w;
-    w.bead_spacing_mm = 3.0, w.layer_height_mm = 1.0, w.chord_error_mm = 0.05, w.torch_distance_mm = 10.0;
+    w.bead_spacing_mm = 3.0, w.layer_height_mm = 1.0, w.chord_error_mm = 0.05, w.torch_distance_mm = 2.0;
     WeldLayerResult plan;
     const double t_plan = bench::best_cpu_seconds(1, [&] { plan = plan_weld_layers(eroded, reference, w); });
     double t_peer = -1.0;  // the quadratic peer only where it ends in reasonable time

@@ -105,6 +105,50 @@ std::vector<std::vector<Eigen::Vector2d>> clip_along(const SurfacePath& path, co
   return runs;
 }
 
+// The paper's loop heuristic across paths: where the parallels focus (a deep bowl, positive Gaussian curvature) a
+// later path of the layer can cross an earlier one after their loops are cut; its crossing segments are dropped and
+// it is split there, so no two beads of a layer cross. Works in the plane across `normal`. Returns the segments cut.
+std::size_t cut_crossings(std::vector<WeldPath>* paths, const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d e1 =
+      (std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(normal).normalized();
+  const Eigen::Vector3d e2 = normal.cross(e1);
+  auto flat = [&](const Eigen::Vector3d& x) { return Eigen::Vector2d(x.dot(e1), x.dot(e2)); };
+  auto orient = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+    return (q - p).x() * (r - p).y() - (q - p).y() * (r - p).x();
+  };
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> accepted;
+  std::vector<WeldPath> out;
+  std::size_t cut = 0;
+  for (WeldPath& path : *paths) {
+    WeldPath piece = path;
+    piece.points.clear(), piece.normals.clear();
+    std::vector<WeldPath> pieces;
+    for (std::size_t i = 0; i < path.points.size(); ++i) {
+      bool crosses = false;
+      if (!piece.points.empty()) {
+        const Eigen::Vector2d a = flat(piece.points.back()), b = flat(path.points[i]);
+        for (const auto& [c, d] : accepted) {
+          if (orient(a, b, c) * orient(a, b, d) < 0.0 && orient(c, d, a) * orient(c, d, b) < 0.0) crosses = true;
+          if (crosses) break;
+        }
+      }
+      if (crosses) {
+        ++cut;
+        if (piece.points.size() >= 2) pieces.push_back(piece);
+        piece.points.clear(), piece.normals.clear();
+      }
+      piece.points.push_back(path.points[i]), piece.normals.push_back(path.normals[i]);
+    }
+    if (piece.points.size() >= 2) pieces.push_back(piece);
+    for (WeldPath& q : pieces) {
+      for (std::size_t i = 0; i + 1 < q.points.size(); ++i) accepted.emplace_back(flat(q.points[i]), flat(q.points[i + 1]));
+      out.push_back(std::move(q));
+    }
+  }
+  *paths = std::move(out);
+  return cut;
+}
+
 }  // namespace
 
 LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int region, int k,
@@ -192,6 +236,7 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
       plan.paths.push_back(std::move(path));
     }
   }
+  plan.crossings_cut = cut_crossings(&plan.paths, out);
   return plan;
 }
 

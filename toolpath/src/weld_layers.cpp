@@ -145,6 +145,35 @@ bool check_damage(const WeldLayerOptions& options, WeldLayerResult* result) {
   return true;
 }
 
+// Crossings between different paths of one layer and region, in the plane across the region's outward normal.
+std::size_t crossings(const std::vector<const WeldPath*>& paths, const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d e1 = (std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(normal).normalized();
+  const Eigen::Vector3d e2 = normal.cross(e1);
+  std::vector<std::vector<Eigen::Vector2d>> flat;
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (const WeldPath* p : paths) {
+    flat.emplace_back();
+    boxes.emplace_back();
+    for (const Eigen::Vector3d& x : p->points) flat.back().emplace_back(x.dot(e1), x.dot(e2)), boxes.back().extend(flat.back().back());
+  }
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+    auto orient = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+      return (q - p).x() * (r - p).y() - (q - p).y() * (r - p).x();
+    };
+    return orient(a, b, c) * orient(a, b, d) < 0.0 && orient(c, d, a) * orient(c, d, b) < 0.0;
+  };
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    for (std::size_t j = i + 1; j < flat.size(); ++j) {
+      if (!boxes[i].intersects(boxes[j])) continue;
+      for (std::size_t a = 0; a + 1 < flat[i].size(); ++a) {
+        for (std::size_t b = 0; b + 1 < flat[j].size(); ++b) count += cross(flat[i][a], flat[i][a + 1], flat[j][b], flat[j][b + 1]);
+      }
+    }
+  }
+  return count;
+}
+
 // Step 5 and the honest status: coverage of the damage per region and per layer, empty layers, max paths.
 void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
            const std::vector<std::vector<Eigen::Vector3d>>& layer_nodes, WeldLayerResult* result) {
@@ -173,6 +202,18 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
       }
     } else if (nodes.empty()) {
       result->warnings.push_back("layer " + std::to_string(k) + " is empty: no damage left at its level");
+    }
+    for (const DamageRegion& region : map.regions) {
+      std::vector<const WeldPath*> own;
+      for (const WeldPath* p : layer) {
+        if (p->region == region.id) own.push_back(p);
+      }
+      const std::size_t n = crossings(own, map.outward[static_cast<std::size_t>(region.deepest_row * map.cols + region.deepest_col)]);
+      result->path_crossings += n;
+      if (n > 0) {
+        failures.push_back("layer " + std::to_string(k) + ", crater " + std::to_string(region.id) + ": its paths cross " +
+                           std::to_string(n) + " times");
+      }
     }
     if (k != 1) continue;
     for (const DamageRegion& region : map.regions) {
@@ -293,6 +334,7 @@ WeldLayerResult plan_weld_layers(const BezierNetwork& eroded, const BezierNetwor
       result.chord_error_mm_max = std::max(result.chord_error_mm_max, plan.chord_error_mm_max);
       result.spacing_error_pct_max = std::max(result.spacing_error_pct_max, plan.spacing_error_pct_max);
       result.max_paths_reached = result.max_paths_reached || plan.max_paths_reached;
+      result.crossings_cut += plan.crossings_cut;
       for (WeldPath& path : plan.paths) {
         path.path = ++result.paths_per_layer[static_cast<std::size_t>(k - 1)];
         result.total_length_mm += path.length_mm();

@@ -91,6 +91,8 @@ struct WeldLayerResult {
   std::size_t cusps_removed = 0;
   std::size_t newton_offsets = 0;
   bool max_paths_reached = false;
+  std::size_t crossings_cut = 0;        // segments dropped where a path crossed an earlier one of its layer
+  std::size_t path_crossings = 0;       // crossings left between paths of one layer and crater (not ok)
 };
 
 // Throws conform::Error when the options are not valid, a limit is hit (layers, paths, intersection work: the message
