@@ -184,6 +184,38 @@ TEST(ParallelPaths, ConcaveOffsetsLoseTheirLoops) {
   EXPECT_GT(lowest, 50.0 + 4.0 * 2.0);
 }
 
+TEST(ParallelPaths, PathsLeavingTheDomainEndOnItsBorder) {
+  const test::Plane plane;  // [0, 100]^2
+  ParallelPathOptions o;
+  o.spacing_mm = 2.0;
+  o.chord_error_mm = 0.05;
+  o.max_paths = 5;
+  // A slanted reference from the left border: its parallels (to the left, +v) start beyond u = 0, and are clipped there
+  // instead of losing their first step.
+  const ParallelPathResult r = parallel_paths(plane, {{0.0, 10.0}, {100.0, 30.0}}, o);
+  ASSERT_EQ(r.paths.size(), 5u);
+  for (std::size_t k = 1; k < r.paths.size(); ++k) {
+    EXPECT_NEAR(r.paths[k].uv.front().x(), 0.0, 1e-9) << k;
+    // Still on the straight line 2 k mm from the reference: the offset line v = 10 + u / 5 + 2 k sqrt(1.04).
+    EXPECT_NEAR(r.paths[k].uv.front().y(), 10.0 + 2.0 * static_cast<double>(k) * std::sqrt(1.04), 1e-6) << k;
+  }
+}
+
+TEST(RemoveCusps, CutsReversalsAndRepeats) {
+  std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1.5, 0, 0}, {3, 0, 0}, {3, 0, 0}, {4, 0, 0}};
+  std::vector<Eigen::Vector2d> uv;
+  for (const Eigen::Vector3d& x : p) uv.emplace_back(x.x(), 7.0);
+  EXPECT_EQ(remove_cusps(&p, &uv), 2u);  // the turn back at 2 and the repeated 3
+  ASSERT_EQ(p.size(), 5u);
+  ASSERT_EQ(uv.size(), 5u);
+  const double expected[] = {0.0, 1.0, 1.5, 3.0, 4.0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(p[i].x(), expected[i]);
+    EXPECT_EQ(uv[i].x(), expected[i]);
+  }
+  EXPECT_EQ(remove_cusps(&p, &uv), 0u);
+}
+
 TEST(ParallelPaths, RejectsBadOptions) {
   const test::Plane plane;
   ParallelPathOptions o;

@@ -70,6 +70,22 @@ TEST(SurfaceIntersection, SphereCapAgainstAPlane) {
   }
 }
 
+TEST(SurfaceIntersection, WorkIsBounded) {
+  const BezierNetwork paraboloid = exact_network([](double x, double y) { return Eigen::Vector3d(x, y, (x * x + y * y) / 40.0); }, 20.0, 4);
+  const BezierNetwork plane = exact_network([](double x, double y) { return Eigen::Vector3d(x, y, 5.0); }, 20.0, 3);
+  IntersectionOptions o;
+  o.tolerance_mm = 0.3;
+  const IntersectionResult full = intersect_surfaces(paraboloid, plane, o);
+  ASSERT_TRUE(full.ok);
+  EXPECT_GT(full.box_pairs, 100u);
+  o.max_box_pairs = 100;  // issue 18: the work any input can cause has a limit, and hitting it is said
+  const IntersectionResult r = intersect_surfaces(paraboloid, plane, o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.work_limit_hit);
+  EXPECT_TRUE(r.curves.empty());
+  EXPECT_NE(r.termination.find("max_box_pairs"), std::string::npos) << r.termination;
+}
+
 TEST(SurfaceIntersection, ApartSurfacesDoNotIntersect) {
   const BezierNetwork a = exact_network([](double x, double y) { return Eigen::Vector3d(x, y, 0.0); }, 10.0, 2);
   const BezierNetwork b = exact_network([](double x, double y) { return Eigen::Vector3d(x, y, 0.5); }, 10.0, 2);
