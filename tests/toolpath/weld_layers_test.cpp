@@ -109,6 +109,49 @@ TEST(WeldLayers, NoDamageIsNotOk) {
   EXPECT_TRUE(r.paths.empty());
 }
 
+// Honest status: an ambiguous side is not ok, explicit layers beyond the depth are warned about, limits throw naming
+// themselves.
+TEST(WeldLayers, StatusAndLimits) {
+  ErodedOptions blade = small_blade();
+  blade.bumps = {Bump{-18.0, 10.0, 10.0, 1.5}};  // as large as the crater: which side is damage?
+  ErodedScan scan = generate_eroded(blade);
+  WeldLayerResult r = plan_weld_layers(BezierNetwork(grid_of(scan.rows, scan.cols, scan.eroded)),
+                                       BezierNetwork(grid_of(scan.rows, scan.cols, scan.reference)), weld_options());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.termination.find("ambiguous"), std::string::npos) << r.termination;
+  WeldLayerOptions o = weld_options();
+  o.outward_side = 1;  // told: the crater is the damage
+  r = plan_weld_layers(BezierNetwork(grid_of(scan.rows, scan.cols, scan.eroded)),
+                       BezierNetwork(grid_of(scan.rows, scan.cols, scan.reference)), o);
+  EXPECT_TRUE(r.ok) << r.termination;
+  scan = generate_eroded(small_blade());
+  const BezierNetwork eroded(grid_of(scan.rows, scan.cols, scan.eroded));
+  const BezierNetwork reference(grid_of(scan.rows, scan.cols, scan.reference));
+  o = weld_options();
+  o.layers = 5;  // the 1.5 mm crater needs 3 of 0.6 mm
+  r = plan_weld_layers(eroded, reference, o);
+  EXPECT_TRUE(r.ok) << r.termination;
+  ASSERT_EQ(r.paths_per_layer.size(), 5u);
+  EXPECT_EQ(r.paths_per_layer[3], 0);
+  EXPECT_EQ(r.paths_per_layer[4], 0);
+  ASSERT_GE(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings.back().find("layer 5 is empty"), std::string::npos) << r.warnings.back();
+  o = weld_options();
+  o.layer_height_mm = 0.001;
+  try {
+    plan_weld_layers(eroded, reference, o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("kMaxWeldLayers"), std::string::npos) << e.what();
+  }
+  o = weld_options();
+  o.torch_distance_mm = 1000.0;
+  EXPECT_THROW(plan_weld_layers(eroded, reference, o), Error);
+  o = weld_options();
+  o.chord_error_mm = 1.5;  // more than dc / 2
+  EXPECT_THROW(plan_weld_layers(eroded, reference, o), Error);
+}
+
 TEST(WeldLayers, RejectsBadOptions) {
   const ErodedScan scan = generate_eroded(small_blade());
   const BezierNetwork net(grid_of(scan.rows, scan.cols, scan.reference));
