@@ -189,6 +189,18 @@ TEST(WeldLayersMatrix, NoiseLevels) {
   }
 }
 
+TEST(WeldLayersMatrix, TorchDistance) {
+  for (const double w : {5.0, 10.0}) {  // Eq. (5) widens the spacing in the bowl: no crossings left, damage covered
+    SCOPED_TRACE(w);
+    Case c = base_case(0.01);
+    c.blade.craters = {Crater{0.0, 0.0, 15.0, 2.0}, Crater{35.0, 10.0, 10.0, 1.5}};
+    c.weld.torch_distance_mm = w;
+    const WeldLayerResult r = plan(c);
+    expect_refilled(c, r, 40.0);
+    EXPECT_EQ(r.path_crossings, 0u);
+  }
+}
+
 TEST(WeldLayersMatrix, GridSpacings) {
   for (const double spacing : {0.2, 1.0, 4.0}) {
     SCOPED_TRACE(spacing);
