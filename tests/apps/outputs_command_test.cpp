@@ -2,10 +2,12 @@
 // given twice is exit 2 before any work, a multi-file command commits all outputs or none and never loses a file it
 // did not create, and `-` streams to standard output.
 
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "run_command.h"
 #include "temp_dir.h"
@@ -45,6 +47,35 @@ TEST(Outputs, CompareFailingOnTheHistogramLeavesTheScanThatWasGivenAsTheMap) {
   EXPECT_EQ(dir.listing(), "scan.ply\n");
 }
 
+// Issue 18: tube-joint lost an existing path.csv when a later output failed.
+TEST(Outputs, TubeJointFailingOnALaterOutputKeepsTheExistingPath) {
+  test::TempDir dir;
+  const auto made = conform({"generate",       "tube-joint",
+                             "--out-leg",      dir.file("leg.ply"),
+                             "--out-stub",     dir.file("stub.ply"),
+                             "--out-truth",    dir.file("truth.csv"),
+                             "--leg-radius",   "300",
+                             "--stub-radius",  "160",
+                             "--wall",         "10",
+                             "--edge",         "12",
+                             "--truth-points", "90",
+                             "--pitch-deg",    "90",
+                             "--offset",       "0",
+                             "--json"});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  std::ostringstream protrusion;
+  protrusion.precision(17);
+  protrusion << nlohmann::json::parse(made.out)["protrusion_mm"].get<double>();
+  test::write_bytes(dir.file("path.csv"), "the previous path\n");
+  const auto r = conform({"tube-joint", "--leg", dir.file("leg.ply"), "--stub", dir.file("stub.ply"), "--step-deg",
+                          "10", "--pitch-deg", "90", "--offset", "0", "--protrusion", protrusion.str(), "--out-path",
+                          dir.file("path.csv"), "--out-cut", dir.file("nodir/cut.csv")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "nodir/cut.csv")) << r.err;
+  EXPECT_EQ(test::read_bytes(dir.file("path.csv")), "the previous path\n");
+  EXPECT_EQ(dir.listing(), "leg.ply\npath.csv\nstub.ply\ntruth.csv\n");
+}
+
 TEST(Outputs, AnOutputThatIsAnInputIsExitTwoBeforeAnyWork) {
   test::TempDir dir;
   test::write_bytes(dir.file("scan.ply"), "not even a ply: refused before it is read");
@@ -54,7 +85,8 @@ TEST(Outputs, AnOutputThatIsAnInputIsExitTwoBeforeAnyWork) {
        dir.path() + "/./scan.ply"},
       {"align", "--scan", dir.file("scan.ply"), "--reference", dir.file("grid.csv"), "--out-aligned",
        dir.file("scan.ply")},
-      {"weld-layers", "--eroded", dir.file("grid.csv"), "--chord-error", "0.1", "--out", dir.file("grid.csv")},
+      {"weld-layers", "--eroded", dir.file("grid.csv"), "--chord-error", "0.1", "--bead-spacing", "5", "--layer-height",
+       "2", "--out", dir.file("grid.csv")},
       {"fit-cylinder", "--input", dir.file("scan.ply"), "--out", dir.file("scan.ply")},
       {"profile", "--edge", dir.file("grid.csv"), "--features", dir.file("scan.ply"), "--out", dir.file("grid.csv")},
   };
