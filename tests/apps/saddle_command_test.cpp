@@ -136,11 +136,24 @@ TEST(SaddleCommand, UnwritableOutputExitsTwoNamingTheFile) {
   EXPECT_NE(r.err.find("/nonexistent-dir/x.csv"), std::string::npos) << r.err;
 }
 
+// Issue 18: r = R (equal diameters) was refused. The path stops on both corners; the pose option by its new name.
+TEST(SaddleCommand, EqualDiametersRunAndStopOnBothCorners) {
+  const auto r = saddle(
+      {"--R", "600", "--r", "600", "--right-angle-pose-deg", "45", "--speed", "250", "--period", "0.004", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["corner_steps"], 2);
+  EXPECT_EQ(j["right_angle_pose_deg"], 45.0);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_LE(j["path_length_mm"].get<double>(), j["curve_length_mm"].get<double>());
+}
+
 TEST(SaddleCommand, HelpGivesUnitsAndDefaults) {
   const auto r = saddle({"--help"});
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* text : {"--R", "--r", "--pitch-deg", "--offset", "--start-pose-deg", "--step-deg", "--speed",
-                           "--period", "--out", "--json", "mm/s", "default 90", "default 0"}) {
+  for (const char* text :
+       {"--R", "--r", "--pitch-deg", "--offset", "--right-angle-pose-deg", "--start-pose-deg", "--step-deg", "--speed",
+        "--period", "--out", "--json", "mm/s", "--pitch-deg FLOAT=90", "--offset FLOAT=0"}) {
     EXPECT_NE(r.out.find(text), std::string::npos) << text;
   }
 }

@@ -57,7 +57,7 @@ class SaddleCurve {
   // axis (Eq. 19-23). The seam advances r dphi around the pipe per ds = r dphi / sin(alpha) along itself.
   double sin_alpha(double phi) const;
   // Arc length of the seam between two azimuths (phi1 >= phi0), mm: adaptive Gauss-Legendre quadrature of |dP/dphi|
-  // split at pi/2 and 3 pi/2, relative accuracy 1e-13 up to |offset| + r = R. *converged (if given) false when a
+  // split at pi/2 and 3 pi/2, relative tolerance 1e-11 (measured error 1e-13) up to |offset| + r = R. *converged (if given) false when a
   // piece did not meet it.
   double arc_length(double phi0, double phi1, bool* converged = nullptr) const;
   // Azimuths in [0, 2 pi] where the seam has a corner (the pipe touches the cylinder: |offset| + r = R); at a corner
