@@ -44,27 +44,43 @@ int create_temporary(const std::string& shown, const std::string& target, std::s
   throw Error(shown + ": cannot open for writing (" + detail::errno_text() + ")");
 }
 
+// The descriptor an output path names, or -1: `-` and /dev/stdout are 1, /dev/stderr 2, /dev/fd/N and
+// /proc/self/fd/N are N. Written through a duplicate of it (same offset, same append mode as the shell set up), never
+// reopened or replaced: `--out /dev/stdout > file` appends to what the shell opened, like `>` does for any program.
+int inherited_descriptor(const std::string& path) {
+  if (path == "-" || path == "/dev/stdout") return STDOUT_FILENO;
+  if (path == "/dev/stderr") return STDERR_FILENO;
+  for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    if (path.size() > prefix.size() && path.compare(0, prefix.size(), prefix) == 0 &&
+        path.find_first_not_of("0123456789", prefix.size()) == std::string::npos && path.size() - prefix.size() < 9) {
+      return std::stoi(path.substr(prefix.size()));
+    }
+  }
+  return -1;
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw Error("an output path is empty");
-  if (path_ == "-") {
+  const int inherited = inherited_descriptor(path_);
+  struct stat st {};
+  if (inherited >= 0) {
     direct_ = true;
-    temp_path_ = "/dev/stdout";
-    fd_ = ::dup(STDOUT_FILENO);
-    if (fd_ < 0) throw Error("-: cannot write to standard output (" + detail::errno_text() + ")");
+    temp_path_ = path_ == "-" ? "/dev/stdout" : path_;
+    fd_ = ::fcntl(inherited, F_DUPFD_CLOEXEC, 0);
+    if (fd_ < 0) throw Error(path_ + ": cannot write to this descriptor (" + detail::errno_text() + ")");
     return;
   }
-  target_ = detail::resolve_symlinks(path_);
-  struct stat st {};
-  if (::stat(target_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
     if (S_ISDIR(st.st_mode)) throw Error(path_ + ": is a directory, not a file to write");
     direct_ = true;  // a device or FIFO: streamed into, never replaced
-    temp_path_ = target_;
-    fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    temp_path_ = path_;
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
     if (fd_ < 0) throw Error(path_ + ": cannot open for writing (" + detail::errno_text() + ")");
     return;
   }
+  target_ = detail::resolve_symlinks(path_);
   fd_ = create_temporary(path_, target_, temp_path_);
 }
 

@@ -109,7 +109,12 @@ TEST(Outputs, TheSamePathGivenTwiceIsExitTwoAndWritesNothing) {
   EXPECT_EQ(dir.listing(), "");
 }
 
-TEST(Outputs, DashStreamsToStandardOutput) {
+// Issue 18: `--out /dev/stdout` replaced /dev/stdout by a regular file (as root). Both stream now.
+TEST(Outputs, DashAndDevStdoutStreamToStandardOutput) {
+  const auto dev = conform(
+      {"saddle", "--R", "600", "--r", "150", "--start-pose-deg", "45", "--step-deg", "90", "--out", "/dev/stdout"});
+  ASSERT_EQ(dev.exit_code, 0) << dev.err;
+  EXPECT_TRUE(contains(dev.out, "i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm\n0,")) << dev.out;
   const auto r = conform(
       {"saddle", "--R", "600", "--r", "150", "--start-pose-deg", "45", "--step-deg", "90", "--json", "--out", "-"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
