@@ -100,6 +100,12 @@ class AlignCommand : public Command {
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({options_.scan_path, options_.reference_path});
+    if (init_.rfind("pairs:", 0) == 0) files.add_input(init_.substr(6));
+    files.add_outputs({options_.out_transform_path, options_.out_aligned_path});
+  }
+
   int run() override {
     options_.mm_per_unit = millimetres_per_unit(units_);
     if (!method_.empty()) {

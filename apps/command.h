@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "conform/core/output_set.h"
+
 namespace conform::app {
 
 class Command {
@@ -16,6 +18,10 @@ class Command {
   virtual ~Command() = default;
   // Declare options on the command's own CLI11 subcommand.
   virtual void configure(CLI::App& command) = 0;
+  // Every file the command reads and writes, as given on the command line, before run(): an output that is an input
+  // or is given twice is refused here (exit 2, before any work), and every output is committed together after run()
+  // (all or none; docs/foundation.md, "Outputs").
+  virtual void declare_files(OutputSet& /*files*/) {}
   // Exit code: 0 success, 1 the job ran but did not succeed. Bad input throws conform::Error (exit code 2).
   virtual int run() = 0;
 };

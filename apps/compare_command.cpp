@@ -48,6 +48,11 @@ class CompareCommand : public Command {
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({options_.scan_path, options_.reference_path, options_.transform_path});
+    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path});
+  }
+
   int run() override {
     options_.mm_per_unit = millimetres_per_unit(units_);
     if (*tolerance_) options_.tolerance_mm = tolerance_mm_;

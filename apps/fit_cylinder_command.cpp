@@ -41,6 +41,11 @@ class FitCylinderCommand : public Command {
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_input(options_.input_path);
+    files.add_output(options_.out_path);
+  }
+
   int run() override {
     if (max_radius_->count() > 0) options_.fit.max_radius_mm = max_radius_mm_;
     if (!axis_.empty()) options_.fit.axis_prior = Eigen::Vector3d(axis_[0], axis_[1], axis_[2]);

@@ -61,6 +61,8 @@ class GenerateTubeJointCommand : public Command {
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override { files.add_outputs({o_.leg_path, o_.stub_path, o_.truth_path}); }
+
   int run() override {
     GenerateTubeJointOptions o = o_;
     o.spec.pitch_rad = radians(pitch_deg_);

@@ -91,7 +91,12 @@ int main(int argc, char** argv) {
 
   try {
     for (Bound& b : bound) {
-      if (b.app->parsed()) return b.command->run();
+      if (!b.app->parsed()) continue;
+      conform::OutputSet outputs;  // every file the command writes is staged here and appears on commit()
+      b.command->declare_files(outputs);
+      const int code = b.command->run();
+      outputs.commit();
+      return code;
     }
   } catch (const conform::Error& e) {
     std::cerr << "conform: error: " << e.what() << std::endl;

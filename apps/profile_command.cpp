@@ -57,6 +57,11 @@ class ProfileCommand : public Command {
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({edge_, features_, second_edge_});
+    files.add_output(out_);
+  }
+
   int run() override {
     ProfileJobOptions options;
     options.edge_path = edge_;

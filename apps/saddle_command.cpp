@@ -21,18 +21,21 @@ class SaddleCommand : public Command {
  public:
   void configure(CLI::App& command) override {
     command.add_option("--R", leg_radius_mm_, "Cylinder (leg) radius R, mm; required")->required();
-    command.add_option("--r", pipe_radius_mm_, "Pipe radius r, mm, 0 < r < R; required")->required();
+    command.add_option("--r", pipe_radius_mm_, "Pipe radius r, mm, 0 < r <= R (r = R: equal diameters); required")
+        ->required();
     command.add_option("--pitch-deg", pitch_deg_,
-                       "Angle between the pipe axis and the cylinder axis, deg, in (0, 90]; default 90 (the paper's "
-                       "right-angle joint)");
+                       "Angle between the pipe axis and the cylinder axis, deg, in [1, 90]; 90 is the paper's "
+                       "right-angle joint");
     command.add_option("--offset", offset_mm_,
-                       "Distance between the two axes, mm, |offset| + r < R; default 0 (the axes intersect)");
+                       "Distance between the two axes, mm, |offset| + r <= R; 0: the axes intersect");
     command
-        .add_option("--start-pose-deg", start_pose_deg_,
-                    "Torch pose angle at theta = 0 (the paper's phi0; Table 1 uses 45), deg; required")
+        .add_option("--right-angle-pose-deg,--start-pose-deg", start_pose_deg_,
+                    "Torch pose angle where the two surfaces meet at a right angle (phi of Eq. 12: the pose is 90 - "
+                    "dihedral + phi; the pose at theta = 0 only for pitch 90, offset 0; Table 1 uses 45), deg, in "
+                    "(-180, 180]; required")
         ->required();
     CLI::Option* step = command.add_option(
-        "--step-deg", step_deg_, "Equal-angle interpolation: rotation per step, deg, in (0, 360]; no default");
+        "--step-deg", step_deg_, "Equal-angle interpolation: rotation per step, deg, in (0, 180); no default");
     CLI::Option* speed = command.add_option(
         "--speed", speed_mm_per_s_, "Constant-speed interpolation: torch speed along the seam, mm/s; no default");
     CLI::Option* period = command.add_option(
@@ -45,6 +48,8 @@ class SaddleCommand : public Command {
     step_ = step;
     speed_ = speed;
   }
+
+  void declare_files(OutputSet& files) override { files.add_output(out_path_); }
 
   int run() override {
     SaddleJobOptions options;
@@ -102,7 +107,9 @@ class SaddleCommand : public Command {
             {"r_mm", pipe_radius_mm_},
             {"pitch_deg", pitch_deg_},
             {"offset_mm", offset_mm_},
-            {"start_pose_deg", start_pose_deg_},
+            {"right_angle_pose_deg", start_pose_deg_},
+            {"start_pose_deg", start_pose_deg_},  // the same value, under its old name
+            {"corner_steps", s.corner_steps},
             {"step_deg", equal_angle ? nlohmann::json(step_deg_) : nlohmann::json(nullptr)},
             {"speed_mm_per_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(speed_mm_per_s_)},
             {"period_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(period_s_)},
@@ -114,14 +121,15 @@ class SaddleCommand : public Command {
     std::printf("seam          R %g mm, r %g mm, pitch %g deg, offset %g mm\n", leg_radius_mm_, pipe_radius_mm_,
                 pitch_deg_, offset_mm_);
     if (s.rule == SaddleStepRule::kEqualAngle) {
-      std::printf("interpolation %s, %g deg per step, start pose %g deg\n", to_string(s.rule), step_deg_,
-                  start_pose_deg_);
+      std::printf("interpolation %s, %g deg per step, pose %g deg at a right-angle dihedral\n", to_string(s.rule),
+                  step_deg_, start_pose_deg_);
     } else {
-      std::printf("interpolation %s, %g mm/s x %g s = %g mm per period, start pose %g deg\n", to_string(s.rule),
-                  speed_mm_per_s_, period_s_, speed_mm_per_s_ * period_s_, start_pose_deg_);
+      std::printf("interpolation %s, %g mm/s x %g s = %g mm per period, pose %g deg at a right-angle dihedral\n",
+                  to_string(s.rule), speed_mm_per_s_, period_s_, speed_mm_per_s_ * period_s_, start_pose_deg_);
     }
     std::printf("points        %zu (%zu full steps, last step %.6f mm%s)\n", s.points.size(), s.full_steps,
                 s.last_step_mm, s.last_step_partial ? ", shortened to land on 360 deg" : "");
+    if (s.corner_steps > 0) std::printf("corners       %zu steps shortened to end on a corner\n", s.corner_steps);
     std::printf("step mm       min %.6f  mean %.6f  max %.6f\n", s.step_mm_min, s.step_mm_mean, s.step_mm_max);
     std::printf("speed ripple  %.6f %%\n", s.speed_ripple_pct);
     std::printf("length mm     path %.6f  seam %.6f\n", s.path_length_mm, s.curve_length_mm);

@@ -74,6 +74,12 @@ class SicpCommand : public Command {
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({options_.contour_path, options_.scan_path, options_.trajectory_path, options_.surface_path,
+                      options_.truth_path});
+    files.add_output(options_.out_trajectory_path);
+  }
+
   int run() override {
     SicpCompensationOptions& o = options_.compensation;
     o.model = model_ == "rigid"        ? SicpModel::kRigid

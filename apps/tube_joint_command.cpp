@@ -77,6 +77,11 @@ class TubeJointCommand : public Command {
     pitch_ = pitch;
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path});
+    files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld});
+  }
+
   int run() override {
     TubeJointJobOptions o = o_;
     if (o.leg_pose_path.empty() && pitch_->count() == 0) {

@@ -48,6 +48,11 @@ class WeldLayersCommand : public Command {
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({o_.eroded_path, o_.reference_path});
+    files.add_output(o_.out_path);
+  }
+
   int run() override {
     if (o_.reference_path.empty() && !from_border_) {
       throw Error("weld-layers: give --reference FILE or --reference-from-border");

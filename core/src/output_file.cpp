@@ -1,40 +1,18 @@
 #include "output_file.h"
 
-#include <cerrno>
 #include <charconv>
-#include <cstring>
-
-#include "conform/core/error.h"
 
 namespace conform::detail {
 
-OutputFile::OutputFile(const std::string& path) : file_(path) {
-  stream_ = std::fopen(file_.temp_path().c_str(), "wb");
-  if (stream_ == nullptr) {
-    throw Error(path + ": cannot open for writing (" + std::string(std::strerror(errno)) + ")");
-  }
-  buffer_.reserve(kFlushBytes + kFlushBytes / 4);
-}
-
-OutputFile::~OutputFile() {
-  if (stream_ != nullptr) std::fclose(stream_);
-}
+OutputFile::OutputFile(const std::string& path) : file_(path) { buffer_.reserve(kFlushBytes + kFlushBytes / 4); }
 
 void OutputFile::flush() {
-  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), stream_) != buffer_.size()) {
-    throw Error(file_.path() + ": write failed (" + std::string(std::strerror(errno)) + ")");
-  }
+  file_.write(buffer_.data(), buffer_.size());
   buffer_.clear();
 }
 
 void OutputFile::commit() {
   flush();
-  std::FILE* stream = stream_;
-  stream_ = nullptr;
-  // fclose reports the errors of the last buffered write (a full disk shows here, not in fwrite).
-  if (std::fclose(stream) != 0) {
-    throw Error(file_.path() + ": write failed (" + std::string(std::strerror(errno)) + ")");
-  }
   file_.commit();
 }
 

@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <string_view>
 
@@ -15,7 +14,6 @@ namespace conform::detail {
 class OutputFile {
  public:
   explicit OutputFile(const std::string& path);
-  ~OutputFile();
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
@@ -31,7 +29,6 @@ class OutputFile {
   void flush();
 
   AtomicFile file_;
-  std::FILE* stream_ = nullptr;
   std::string buffer_;
 };
 

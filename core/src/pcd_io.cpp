@@ -146,11 +146,9 @@ Mesh read_pcd(const std::string& path, ReadReport& /*report*/) {
 void write_pcd(const std::string& path, const Cloud& cloud, const WriteOptions& options) {
   const bool ascii = options.encoding == Encoding::kAscii;
   if (cloud.empty()) return write_file_atomically(path, empty_pcd(cloud.has_normals(), ascii));
+  // Created here first (AtomicFile: O_EXCL, a random name) so that an unwritable place is our error with its reason,
+  // not a message PCL prints; PCL then writes the temporary by name.
   AtomicFile file(path);
-  // Opened here first so that an unwritable place is our error with its reason, not a message PCL prints.
-  std::FILE* probe = std::fopen(file.temp_path().c_str(), "wb");
-  if (probe == nullptr) throw Error(path + ": cannot open for writing (" + std::string(std::strerror(errno)) + ")");
-  std::fclose(probe);
   const pcl::PCLPointCloud2 blob = to_blob(cloud);
   pcl::PCDWriter writer;
   int status = -1;

@@ -8,6 +8,7 @@
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
+#include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/registration/downsample.h"
 
@@ -78,25 +79,19 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
 void write_outputs(const Mesh& scan_mesh, const AlignOptions& options, AlignResult& result) {
   if (options.out_transform_path.empty() && options.out_aligned_path.empty()) return;
   report(options.progress, "write", 0.0);
-  if (!options.out_transform_path.empty()) {
-    write_transform(options.out_transform_path, result.icp.T_ref_scan);
-    result.transform_path = options.out_transform_path;
-  }
+  OutputSet outputs;
+  if (!options.out_transform_path.empty()) write_transform(options.out_transform_path, result.icp.T_ref_scan);
   if (!options.out_aligned_path.empty()) {
-    try {
-      const Mesh aligned = transformed(scan_mesh, result.icp.T_ref_scan);
-      if (aligned.has_faces()) {
-        write_mesh(options.out_aligned_path, aligned);
-      } else {
-        write_cloud(options.out_aligned_path, to_cloud(aligned));
-      }
-    } catch (...) {
-      if (!result.transform_path.empty()) std::remove(result.transform_path.c_str());
-      result.transform_path.clear();
-      throw;
+    const Mesh aligned = transformed(scan_mesh, result.icp.T_ref_scan);
+    if (aligned.has_faces()) {
+      write_mesh(options.out_aligned_path, aligned);
+    } else {
+      write_cloud(options.out_aligned_path, to_cloud(aligned));
     }
-    result.aligned_path = options.out_aligned_path;
   }
+  outputs.commit();
+  result.transform_path = options.out_transform_path;
+  result.aligned_path = options.out_aligned_path;
   report(options.progress, "write", 1.0);
 }
 

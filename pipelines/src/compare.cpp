@@ -9,6 +9,7 @@
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
+#include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/core/units.h"
 
@@ -76,6 +77,7 @@ void write_outputs(const CompareOptions& options, const Mesh& scan_ref, CompareR
   const std::string png = options.out_histogram_path.empty()
                               ? std::string()
                               : options.histogram(result.deviation.deviation_mm, result.statistics);
+  OutputSet outputs;  // the map and the histogram, both or neither
   if (!options.out_deviation_path.empty()) {
     VertexAttributes attributes;
     std::vector<float> values(result.deviation.deviation_mm.begin(), result.deviation.deviation_mm.end());
@@ -85,18 +87,11 @@ void write_outputs(const CompareOptions& options, const Mesh& scan_ref, CompareR
       for (double d : result.deviation.deviation_mm) attributes.colors.push_back(options.colour(d, result.statistics));
     }
     write_ply_with_attributes(options.out_deviation_path, scan_ref, attributes);
-    result.out_deviation_path = options.out_deviation_path;
   }
-  if (!options.out_histogram_path.empty()) {
-    try {
-      write_file_atomically(options.out_histogram_path, png);
-    } catch (...) {
-      if (!result.out_deviation_path.empty()) std::remove(result.out_deviation_path.c_str());  // all or nothing
-      result.out_deviation_path.clear();
-      throw;
-    }
-    result.out_histogram_path = options.out_histogram_path;
-  }
+  if (!options.out_histogram_path.empty()) write_file_atomically(options.out_histogram_path, png);
+  outputs.commit();
+  result.out_deviation_path = options.out_deviation_path;
+  result.out_histogram_path = options.out_histogram_path;
   report(options.progress, "write", 1.0);
 }
 

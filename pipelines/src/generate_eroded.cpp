@@ -4,6 +4,7 @@
 
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/output_set.h"
 #include "conform/fitting/surface_grid.h"
 
 namespace conform {
@@ -35,16 +36,11 @@ GenerateErodedResult run_generate_eroded(const GenerateErodedOptions& options) {
       rims.end_row();
     }
   }
-  try {
-    surface_grid_table(eroded).write(result.eroded_path);
-    surface_grid_table(reference).write(result.reference_path);
-    rims.write(result.rims_path);
-  } catch (...) {
-    std::remove(result.eroded_path.c_str());
-    std::remove(result.reference_path.c_str());
-    std::remove(result.rims_path.c_str());
-    throw;
-  }
+  OutputSet outputs;  // the three files, all or none
+  surface_grid_table(eroded).write(result.eroded_path);
+  surface_grid_table(reference).write(result.reference_path);
+  rims.write(result.rims_path);
+  outputs.commit();
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
+#include "conform/core/output_set.h"
 
 namespace conform {
 namespace {
@@ -132,25 +133,14 @@ GeneratePanelResult run_generate_panel(const GeneratePanelOptions& options) {
                       {"truth_trajectory", name(r.files.truth_trajectory)}};
 
   report(options.panel.progress, "write", 0.0);
-  const std::vector<std::string> written_in_order = {r.files.scan,       r.files.nominal,          r.files.contour,
-                                                     r.files.trajectory, r.files.truth_trajectory, r.files.truth_json};
-  std::size_t written = 0;
-  try {
-    write_cloud(r.files.scan, panel.scan);
-    ++written;
-    write_mesh(r.files.nominal, panel.surface);
-    ++written;
-    write_contour(r.files.contour, panel.contour);
-    ++written;
-    write_path(r.files.trajectory, panel.trajectory);
-    ++written;
-    write_path(r.files.truth_trajectory, panel.truth);
-    ++written;
-    write_file_atomically(r.files.truth_json, r.truth.dump(2) + "\n");
-  } catch (...) {
-    for (std::size_t i = 0; i < written; ++i) std::remove(written_in_order[i].c_str());  // no half a data set
-    throw;
-  }
+  OutputSet outputs;  // no half a data set: all six files or none
+  write_cloud(r.files.scan, panel.scan);
+  write_mesh(r.files.nominal, panel.surface);
+  write_contour(r.files.contour, panel.contour);
+  write_path(r.files.trajectory, panel.trajectory);
+  write_path(r.files.truth_trajectory, panel.truth);
+  write_file_atomically(r.files.truth_json, r.truth.dump(2) + "\n");
+  outputs.commit();
   report(options.panel.progress, "write", 1.0);
   return r;
 }

@@ -9,6 +9,7 @@
 #include "conform/core/atomic_file.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/output_set.h"
 
 namespace conform {
 namespace {
@@ -112,16 +113,9 @@ GenerateProfileResult run_generate_profile(const GenerateProfileOptions& options
                                                             {r.truth_path, truth_csv(scan)},
                                                             {r.truth_json_path, r.truth.dump(2) + "\n"}};
   if (!r.second_edge_path.empty()) files.emplace_back(r.second_edge_path, points_csv(scan.second_edge));
-  std::vector<std::string> written;
-  try {
-    for (const auto& [path, text] : files) {
-      write_file_atomically(path, text);
-      written.push_back(path);
-    }
-  } catch (...) {
-    for (const std::string& path : written) std::remove(path.c_str());  // one file without the others is half an output
-    throw;
-  }
+  OutputSet outputs;  // one file without the others is half an output: all or none
+  for (const auto& [path, text] : files) write_file_atomically(path, text);
+  outputs.commit();
   return r;
 }
 

@@ -5,6 +5,7 @@
 
 #include "conform/core/atomic_file.h"
 #include "conform/core/error.h"
+#include "conform/core/output_set.h"
 #include "conform/datasets/tube_json.h"
 
 namespace conform {
@@ -53,14 +54,11 @@ GenerateTubeResult run_generate_tube(const GenerateTubeOptions& options) {
   WriteOptions write;
   write.encoding = options.encoding;
   write.double_precision = options.double_precision;
+  OutputSet outputs;  // a mesh without its truth is half an output: both or neither
   write_mesh(result.mesh_path, scan.mesh, write);
   report(progress, "write mesh", 1.0);
-  try {
-    write_file_atomically(result.truth_path, result.truth.dump(2) + "\n");
-  } catch (...) {
-    std::remove(result.mesh_path.c_str());  // a mesh without its truth is half an output
-    throw;
-  }
+  write_file_atomically(result.truth_path, result.truth.dump(2) + "\n");
+  outputs.commit();
   return result;
 }
 

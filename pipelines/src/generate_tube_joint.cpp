@@ -6,6 +6,7 @@
 #include "conform/core/atomic_file.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/output_set.h"
 
 namespace conform {
 namespace {
@@ -79,17 +80,11 @@ GenerateTubeJointResult run_generate_tube_joint(const GenerateTubeJointOptions& 
   result.truth_points = scans.truth.points.size();
   WriteOptions write;
   write.encoding = options.encoding;
-  std::vector<std::string> written;
-  try {
-    write_mesh(options.leg_path, scans.leg_L, write);
-    written.push_back(options.leg_path);
-    write_mesh(options.stub_path, scans.stub_S, write);
-    written.push_back(options.stub_path);
-    write_file_atomically(options.truth_path, tube_joint_truth_csv(scans.truth));
-  } catch (...) {
-    for (const std::string& path : written) std::remove(path.c_str());
-    throw;
-  }
+  OutputSet outputs;  // both scans and their truth, or none
+  write_mesh(options.leg_path, scans.leg_L, write);
+  write_mesh(options.stub_path, scans.stub_S, write);
+  write_file_atomically(options.truth_path, tube_joint_truth_csv(scans.truth));
+  outputs.commit();
   return result;
 }
 

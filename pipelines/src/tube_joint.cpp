@@ -7,6 +7,7 @@
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
+#include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/registration/tube_reference.h"
 #include "conform/toolpath/intersection_graph.h"
@@ -33,17 +34,15 @@ TubeJointSolution failed(TubeJointSolution solution, const CurveCheck& check) {
   return solution;
 }
 
+// All or none (OutputSet): a path without its cut and weld poses is half an output.
 void write_all(const std::vector<std::pair<std::string, std::string>>& files, std::vector<std::string>* written) {
-  try {
-    for (const auto& [path, text] : files) {
-      if (path.empty()) continue;
-      write_file_atomically(path, text);
-      written->push_back(path);
-    }
-  } catch (...) {
-    for (const std::string& path : *written) std::remove(path.c_str());
-    written->clear();
-    throw;
+  OutputSet outputs;
+  for (const auto& [path, text] : files) {
+    if (!path.empty()) write_file_atomically(path, text);
+  }
+  outputs.commit();
+  for (const auto& [path, text] : files) {
+    if (!path.empty()) written->push_back(path);
   }
 }
 

@@ -94,18 +94,23 @@ struct BadInput {
 
 TEST(SaddleCommand, BadInputExitsTwoWithAMessageAndWritesNothing) {
   const std::vector<BadInput> cases = {
-      {{"--R", "600", "--r", "600", "--start-pose-deg", "45", "--step-deg", "9"}, "must be smaller than the cylinder"},
-      {{"--R", "600", "--r", "900", "--start-pose-deg", "45", "--step-deg", "9"}, "must be smaller than the cylinder"},
+      {{"--R", "600", "--r", "600.5", "--start-pose-deg", "45", "--step-deg", "9"}, "must not be larger than the cyl"},
+      {{"--R", "600", "--r", "900", "--start-pose-deg", "45", "--step-deg", "9"}, "must not be larger than the cyl"},
       {{"--R", "600", "--r", "0", "--start-pose-deg", "45", "--step-deg", "9"},
        "pipe radius r = 0 mm must be positive"},
       {{"--R", "-5", "--r", "150", "--start-pose-deg", "45", "--step-deg", "9"}, "radius R = -5 mm must be positive"},
       {with(kPapersJoint, {"--speed", "0", "--period", "0.004"}), "speed 0 mm/s must be a positive number"},
       {with(kPapersJoint, {"--speed", "-1", "--period", "0.004"}), "speed -1 mm/s must be a positive number"},
       {with(kPapersJoint, {"--speed", "1", "--period", "0"}), "period 0 s must be a positive number"},
-      {with(kPapersJoint, {"--step-deg", "0"}), "angle step 0 deg is outside (0, 360] deg"},
-      {with(kPapersJoint, {"--step-deg", "-9"}), "outside (0, 360] deg"},
-      {with(kPapersJoint, {"--pitch-deg", "0", "--step-deg", "9"}), "pitch 0 deg is outside (0, 90] deg"},
-      {with(kPapersJoint, {"--pitch-deg", "120", "--step-deg", "9"}), "pitch 120 deg is outside (0, 90] deg"},
+      {with(kPapersJoint, {"--step-deg", "0"}), "angle step 0 deg is outside (0, 180) deg"},
+      {with(kPapersJoint, {"--step-deg", "-9"}), "outside (0, 180) deg"},
+      {with(kPapersJoint, {"--step-deg", "360"}), "outside (0, 180) deg"},
+      {with(kPapersJoint, {"--pitch-deg", "0", "--step-deg", "9"}), "pitch 0 deg is outside [1, 90] deg"},
+      {with(kPapersJoint, {"--pitch-deg", "1e-300", "--step-deg", "9"}), "is outside [1, 90] deg"},
+      {with(kPapersJoint, {"--pitch-deg", "120", "--step-deg", "9"}), "pitch 120 deg is outside [1, 90] deg"},
+      {{"--R", "600", "--r", "150", "--start-pose-deg", "1e308", "--step-deg", "9"}, "in (-180, 180] deg"},
+      {{"--R", "600", "--r", "150", "--start-pose-deg", "-180", "--step-deg", "9"}, "in (-180, 180] deg"},
+      {{"--R", "600", "--r", "150", "--start-pose-deg", "nan", "--step-deg", "9"}, "in (-180, 180] deg"},
       {with(kPapersJoint, {"--offset", "460", "--step-deg", "9"}), "offset 460 mm is too large"},
       {with(kPapersJoint, {"--speed", "1000", "--period", "1"}), "longer than the pipe radius"},
       {kPapersJoint, "give --step-deg"},
@@ -131,11 +136,24 @@ TEST(SaddleCommand, UnwritableOutputExitsTwoNamingTheFile) {
   EXPECT_NE(r.err.find("/nonexistent-dir/x.csv"), std::string::npos) << r.err;
 }
 
+// Issue 18: r = R (equal diameters) was refused. The path stops on both corners; the pose option by its new name.
+TEST(SaddleCommand, EqualDiametersRunAndStopOnBothCorners) {
+  const auto r = saddle(
+      {"--R", "600", "--r", "600", "--right-angle-pose-deg", "45", "--speed", "250", "--period", "0.004", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["corner_steps"], 2);
+  EXPECT_EQ(j["right_angle_pose_deg"], 45.0);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_LE(j["path_length_mm"].get<double>(), j["curve_length_mm"].get<double>());
+}
+
 TEST(SaddleCommand, HelpGivesUnitsAndDefaults) {
   const auto r = saddle({"--help"});
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* text : {"--R", "--r", "--pitch-deg", "--offset", "--start-pose-deg", "--step-deg", "--speed",
-                           "--period", "--out", "--json", "mm/s", "default 90", "default 0"}) {
+  for (const char* text :
+       {"--R", "--r", "--pitch-deg", "--offset", "--right-angle-pose-deg", "--start-pose-deg", "--step-deg", "--speed",
+        "--period", "--out", "--json", "mm/s", "--pitch-deg FLOAT=90", "--offset FLOAT=0"}) {
     EXPECT_NE(r.out.find(text), std::string::npos) << text;
   }
 }

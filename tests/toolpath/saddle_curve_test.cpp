@@ -162,17 +162,21 @@ void expect_invalid(const SaddleGeometry& g, const std::string& words) {
 }
 
 TEST(SaddleCurve, RejectsJointsWithoutOneClosedSeam) {
-  expect_invalid(geometry(150, 150, 90, 0), "must be smaller than the cylinder radius");
-  expect_invalid(geometry(100, 150, 90, 0), "must be smaller than the cylinder radius");
+  expect_invalid(geometry(150, 150.001, 90, 0), "must not be larger than the cylinder radius");
+  expect_invalid(geometry(100, 150, 90, 0), "must not be larger than the cylinder radius");
   expect_invalid(geometry(0, 150, 90, 0), "must be positive");
   expect_invalid(geometry(600, -1, 90, 0), "must be positive");
-  expect_invalid(geometry(600, 150, 0, 0), "outside (0, 90] deg");
-  expect_invalid(geometry(600, 150, 91, 0), "outside (0, 90] deg");
-  expect_invalid(geometry(600, 150, -30, 0), "outside (0, 90] deg");
-  expect_invalid(geometry(600, 150, 90, 450), "offset 450 mm is too large");
+  expect_invalid(geometry(600, 150, 0, 0), "outside [1, 90] deg");
+  expect_invalid(geometry(600, 150, 0.99, 0), "outside [1, 90] deg");
+  expect_invalid(geometry(600, 150, 1e-300, 0), "outside [1, 90] deg");
+  expect_invalid(geometry(600, 150, 91, 0), "outside [1, 90] deg");
+  expect_invalid(geometry(600, 150, -30, 0), "outside [1, 90] deg");
+  expect_invalid(geometry(600, 150, 90, 450.001), "offset 450.001 mm is too large");
   expect_invalid(geometry(600, 150, 90, -500), "too large");
   expect_invalid(geometry(std::nan(""), 150, 90, 0), "finite");
   EXPECT_TRUE(geometry(600, 150, 90, 449).IsValid(nullptr));
+  EXPECT_TRUE(geometry(600, 150, 90, 450).IsValid(nullptr));  // touches the cylinder: one corner
+  EXPECT_TRUE(geometry(150, 150, 1, 0).IsValid(nullptr));     // equal diameters, the lowest pitch
 }
 
 }  // namespace

@@ -67,8 +67,9 @@ TEST(SaddlePipeline, BadInputThrowsAndLeavesNoFile) {
     run_saddle(options);
     FAIL() << "r > R was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("pipe radius r = 700 mm must be smaller than the cylinder radius R = 600 mm"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("pipe radius r = 700 mm must not be larger than the cylinder radius R = 600 mm"),
+        std::string::npos)
         << e.what();
   }
   EXPECT_EQ(dir.listing(), "");

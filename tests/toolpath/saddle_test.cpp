@@ -265,9 +265,11 @@ void expect_rejected(const SaddleOptions& options, const std::string& words) {
 TEST(Saddle, RejectsBadStepsSpeedsAndPeriods) {
   SaddleOptions options = papers_options();
   options.step_rad = 0.0;
-  expect_rejected(options, "angle step 0 deg is outside (0, 360] deg");
+  expect_rejected(options, "angle step 0 deg is outside (0, 180) deg");
   options.step_rad = 7.0;
-  expect_rejected(options, "outside (0, 360] deg");
+  expect_rejected(options, "outside (0, 180) deg");
+  options.step_rad = kPi;  // a half turn would skip the far side of the seam
+  expect_rejected(options, "outside (0, 180) deg");
   options = papers_options();
   options.rule = SaddleStepRule::kVariableAngle;
   options.speed_mm_per_s = 0.0;
@@ -280,10 +282,16 @@ TEST(Saddle, RejectsBadStepsSpeedsAndPeriods) {
   expect_rejected(options, "longer than the pipe radius");
   options = papers_options();
   options.start_pose_rad = std::nan("");
-  expect_rejected(options, "start pose");
+  expect_rejected(options, "must be a number in (-180, 180] deg");
+  options.start_pose_rad = 1e308;
+  expect_rejected(options, "must be a number in (-180, 180] deg");
+  options.start_pose_rad = -kPi;
+  expect_rejected(options, "must be a number in (-180, 180] deg");
+  options.start_pose_rad = kPi;
+  EXPECT_NO_THROW(interpolate_saddle(options));
   options = papers_options();
-  options.geometry.pipe_radius_mm = 600.0;
-  expect_rejected(options, "must be smaller than the cylinder radius");
+  options.geometry.pipe_radius_mm = 600.001;
+  expect_rejected(options, "must not be larger than the cylinder radius");
   options = papers_options();
   options.step_rad = 1e-7;
   options.max_points = 1000;

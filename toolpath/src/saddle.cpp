@@ -10,6 +10,7 @@
 namespace conform {
 namespace {
 
+constexpr double kPi = 3.141592653589793;
 constexpr double kTwoPi = 6.283185307179586;
 // A step that ends within this fraction of itself from 2 pi lands on 2 pi as a full step.
 constexpr double kLandingTolerance = 1e-9;
@@ -95,10 +96,13 @@ std::vector<double> equal_angle_thetas(double step_rad, bool* last_partial) {
   return thetas;
 }
 
-// Azimuths of the constant-speed rules: one solve per period until the step reaches 2 pi.
+// Azimuths of the constant-speed rules: one solve per period until the step reaches 2 pi. A step that would pass over
+// a corner of the seam (|offset| + r = R) ends on it instead: no chord cuts the corner, and the torch reaches the
+// point where the pipe touches the cylinder; such a step is shortened (and left out of the step figures).
 std::vector<double> constant_speed_thetas(const SaddleCurve& curve, const SaddleOptions& options, std::size_t expected,
-                                          SaddleResult* result) {
+                                          SaddleResult* result, std::vector<bool>* shortened) {
   const double step_mm = options.speed_mm_per_s * options.period_s;
+  const std::vector<double> corners = curve.corners();
   std::vector<double> thetas;
   thetas.reserve(expected);
   thetas.push_back(0.0);
@@ -113,27 +117,40 @@ std::vector<double> constant_speed_thetas(const SaddleCurve& curve, const Saddle
       why << "the step equation did not converge at theta = " << theta << " rad";
       result->termination = why.str();
     }
-    const double end = theta + solve.step_rad;
+    double end = theta + solve.step_rad;
     if (end >= kTwoPi - kLandingTolerance * solve.step_rad) {
       result->last_step_partial = end > kTwoPi + kLandingTolerance * solve.step_rad;
+      shortened->push_back(result->last_step_partial);
       thetas.push_back(kTwoPi);
       return thetas;
     }
+    bool short_step = false;
+    for (double corner : corners) {
+      if (theta < corner && end > corner - kLandingTolerance * solve.step_rad) {
+        short_step = end > corner + kLandingTolerance * solve.step_rad;
+        end = corner;
+      }
+    }
+    result->corner_steps += short_step ? 1 : 0;
+    shortened->push_back(short_step);
     thetas.push_back(end);
     theta = end;
   }
 }
 
-void compute_figures(const SaddleCurve& curve, SaddleResult* result) {
+// shortened[i - 1]: step i ended early (on 2 pi or on a corner): left out of the step figures, unless it is all.
+void compute_figures(const SaddleCurve& curve, const std::vector<bool>& shortened, SaddleResult* result) {
   auto& points = result->points;
   const std::size_t steps = points.size() - 1;
-  result->full_steps = result->last_step_partial && steps > 1 ? steps - 1 : steps;
+  const auto left_out = [&](std::size_t i) { return steps > 1 && shortened[i - 1]; };
+  result->full_steps = 0;
+  for (std::size_t i = 1; i <= steps; ++i) result->full_steps += left_out(i) ? 0 : 1;
   result->step_mm_min = std::numeric_limits<double>::infinity();
   result->step_mm_max = 0.0;
   double sum = 0.0;
   for (std::size_t i = 1; i <= steps; ++i) {
     result->path_length_mm += points[i].step_mm;
-    if (i > result->full_steps) continue;
+    if (left_out(i)) continue;
     result->step_mm_min = std::min(result->step_mm_min, points[i].step_mm);
     result->step_mm_max = std::max(result->step_mm_max, points[i].step_mm);
     sum += points[i].step_mm;
@@ -141,7 +158,17 @@ void compute_figures(const SaddleCurve& curve, SaddleResult* result) {
   result->step_mm_mean = sum / static_cast<double>(result->full_steps);
   result->speed_ripple_pct = 100.0 * (result->step_mm_max - result->step_mm_min) / result->step_mm_mean;
   result->last_step_mm = points.back().step_mm;
-  result->curve_length_mm = curve.arc_length(0.0, kTwoPi);
+  bool length_converged = true;
+  result->curve_length_mm = curve.arc_length(0.0, kTwoPi, &length_converged);
+  // Chords are never longer than the arcs they span: a polyline longer than the seam is a failed quadrature.
+  if (result->converged && (!length_converged || result->path_length_mm > result->curve_length_mm * (1.0 + 1e-9))) {
+    result->converged = false;
+    std::ostringstream why;
+    why.precision(12);
+    why << "the seam's arc length did not converge (seam " << result->curve_length_mm << " mm, path "
+        << result->path_length_mm << " mm)";
+    result->termination = why.str();
+  }
   result->pose_rad_min = std::numeric_limits<double>::infinity();
   result->pose_rad_max = -std::numeric_limits<double>::infinity();
   for (const SaddlePoint& point : points) {
@@ -169,11 +196,13 @@ const char* to_string(SaddleStepRule rule) {
 bool SaddleOptions::IsValid(std::string* error) const {
   if (!geometry.IsValid(error)) return false;
   std::ostringstream why;
-  if (!std::isfinite(start_pose_rad)) {
-    why << "the start pose angle must be a finite number";
+  if (!(start_pose_rad > -kPi && start_pose_rad <= kPi)) {
+    why << "the pose angle at a right-angle dihedral " << start_pose_rad * 180.0 / kPi
+        << " deg must be a number in (-180, 180] deg";
   } else if (rule == SaddleStepRule::kEqualAngle) {
-    if (!(step_rad > 0.0 && step_rad <= kTwoPi)) {
-      why << "the angle step " << step_rad * 360.0 / kTwoPi << " deg is outside (0, 360] deg";
+    if (!(step_rad > 0.0 && step_rad < kPi)) {
+      why << "the angle step " << step_rad * 180.0 / kPi
+          << " deg is outside (0, 180) deg (a half turn or more skips the seam's far side)";
     }
   } else if (!(speed_mm_per_s > 0.0) || !std::isfinite(speed_mm_per_s)) {
     why << "the speed " << speed_mm_per_s << " mm/s must be a positive number";
@@ -209,11 +238,14 @@ SaddleResult interpolate_saddle(const SaddleOptions& options) {
   result.rule = options.rule;
   result.termination = "ok";
   std::vector<double> thetas;
+  std::vector<bool> shortened;
   if (equal_angle) {
     thetas = equal_angle_thetas(options.step_rad, &result.last_step_partial);
+    shortened.assign(thetas.size() - 1, false);
+    shortened.back() = result.last_step_partial;
     result.converged = true;
   } else {
-    thetas = constant_speed_thetas(curve, options, static_cast<std::size_t>(expected), &result);
+    thetas = constant_speed_thetas(curve, options, static_cast<std::size_t>(expected), &result, &shortened);
   }
 
   result.points.reserve(thetas.size());
@@ -225,7 +257,7 @@ SaddleResult interpolate_saddle(const SaddleOptions& options) {
     if (i > 0) point.step_mm = (point.position - result.points.back().position).norm();
     result.points.push_back(point);
   }
-  compute_figures(curve, &result);
+  compute_figures(curve, shortened, &result);
   return result;
 }
 

@@ -4,21 +4,23 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "conform/core/error.h"
+#include "conform/fitting/arc_length.h"
 
 namespace conform {
 namespace {
 
 constexpr double kHalfPi = 1.5707963267948966;
-
-// 5-point Gauss-Legendre nodes and weights on [-1, 1]: exact for polynomials of degree 9.
-constexpr std::array<double, 5> kNodes = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                          0.9061798459386640};
-constexpr std::array<double, 5> kWeights = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                            0.4786286704993665, 0.2369268850561891};
-// Widest azimuth span one 5-point rule covers; |dP/dphi| is analytic, so this is at machine precision.
-constexpr double kMaxPanelRad = 0.05;
+constexpr double kPi = 3.141592653589793;
+// Below this pitch the seam stretches by 1 / sin(pitch) > 57: a brace that lies almost along the leg.
+constexpr double kMinPitchRad = kPi / 180.0;
+// The seam's arc length: relative tolerance of the adaptive quadrature (fitting/arc_length.h). Near a sharp turn the
+// speed |dP/dphi| is only as exact as phi itself (its slope times the rounding of phi), and a tighter tolerance
+// bisects that noise to the depth limit; at 1e-11 the quadrature converges up to r/R = 1 - 1e-9 and the length is
+// within 1e-13 of an independent long-double reference (tests/toolpath/saddle_limits_test.cpp).
+constexpr double kArcRelativeTolerance = 1e-11;
 
 }  // namespace
 
@@ -32,13 +34,13 @@ bool SaddleGeometry::IsValid(std::string* error) const {
     why << "the cylinder radius R = " << R << " mm must be positive";
   } else if (!(r > 0.0)) {
     why << "the pipe radius r = " << r << " mm must be positive";
-  } else if (!(r < R)) {
-    why << "the pipe radius r = " << r << " mm must be smaller than the cylinder radius R = " << R << " mm";
-  } else if (!(pitch_rad > 0.0 && pitch_rad <= kHalfPi)) {
-    why << "the pitch " << pitch_rad * 90.0 / kHalfPi << " deg is outside (0, 90] deg";
-  } else if (!(std::abs(offset_mm) + r < R)) {
+  } else if (!(r <= R)) {
+    why << "the pipe radius r = " << r << " mm must not be larger than the cylinder radius R = " << R << " mm";
+  } else if (!(pitch_rad >= kMinPitchRad && pitch_rad <= kHalfPi)) {
+    why << "the pitch " << pitch_rad * 90.0 / kHalfPi << " deg is outside [1, 90] deg";
+  } else if (!((R - r) - std::abs(offset_mm) >= 0.0)) {
     why << "the offset " << offset_mm << " mm is too large: |offset| + r = " << std::abs(offset_mm) + r
-        << " mm must be smaller than R = " << R << " mm, or the pipe does not meet the cylinder all the way round";
+        << " mm must not exceed R = " << R << " mm, or the pipe does not meet the cylinder all the way round";
   }
   if (why.tellp() == 0) return true;
   if (error != nullptr) *error = why.str();
@@ -59,39 +61,69 @@ SaddleCurve::SaddleCurve(const SaddleGeometry& geometry) : geometry_(geometry) {
   cos_pitch_ = cs.x();
   sin_pitch_ = cs.y();
   T_L_P_ = T_L_P(geometry.joint());
+  // One rounding each, from the inputs; exactly 0 at a corner (|offset| + r = R).
+  gap_plus_ = std::max(0.0, (geometry.leg_radius_mm - geometry.pipe_radius_mm) - geometry.offset_mm);
+  gap_minus_ = std::max(0.0, (geometry.leg_radius_mm - geometry.pipe_radius_mm) + geometry.offset_mm);
+}
+
+// Where the seam point of azimuth phi lies on the cylinder, in L (joint_frames.h): y_leg = offset + r sin phi and
+// x_leg = sqrt(R^2 - y_leg^2) > 0 (the near side). As |offset| + r -> R, R^2 - y_leg^2 cancels to nothing at
+// phi = pi/2 or 3 pi/2, so it is formed as (R - y_leg)(R + y_leg) with
+//   R - y_leg = (R - offset - r) + 2 r sin^2(pi/4 - phi/2),  R + y_leg = (R + offset - r) + 2 r cos^2(pi/4 - phi/2)
+// (1 -+ sin phi = 2 sin^2, 2 cos^2 of pi/4 - phi/2), both sums of non-negative terms: accurate to a few rounding
+// units all the way to the limit. b / x_leg (b = r cos phi = 2 r sin cos of pi/4 - phi/2) is formed the same way, so
+// that it keeps its one-sided limit at a corner (x_leg = 0 when |offset| + r = R): the limit from below phi.
+SaddleCurve::LegPoint SaddleCurve::leg_point(double phi) const {
+  const double r = geometry_.pipe_radius_mm;
+  const double u = 0.25 * kPi - 0.5 * phi;
+  const double su = std::sin(u);
+  const double cu = std::cos(u);
+  const double below = gap_plus_ + 2.0 * r * su * su;   // R - y_leg
+  const double above = gap_minus_ + 2.0 * r * cu * cu;  // R + y_leg
+  LegPoint leg;
+  leg.y = geometry_.offset_mm + r * std::sin(phi);
+  leg.x = std::sqrt(below * above);
+  const double b = 2.0 * r * su * cu;
+  if (leg.x > 0.0) {
+    leg.b_over_x = b / leg.x;
+  } else if (below == 0.0) {
+    leg.b_over_x = std::copysign(2.0 * r * cu / std::sqrt(2.0 * r * above), su >= 0.0 ? 1.0 : -1.0);
+  } else {
+    leg.b_over_x = std::copysign(2.0 * r * su / std::sqrt(2.0 * r * below), cu >= 0.0 ? 1.0 : -1.0);
+  }
+  return leg;
 }
 
 // A pipe point (a, b, h) of P is (b cos + h sin, offset + a, b sin - h cos) in L (joint_frames.h); the cylinder
 // x_L^2 + y_L^2 = R^2 on the near side (x_L > 0) gives h. At pitch pi/2, offset 0 this is Eq. 7.
 Eigen::Vector3d SaddleCurve::point(double phi) const {
   const double r = geometry_.pipe_radius_mm;
-  const double R = geometry_.leg_radius_mm;
-  const double a = r * std::sin(phi);
   const double b = r * std::cos(phi);
-  const double y_leg = geometry_.offset_mm + a;
-  const double x_leg = std::sqrt(R * R - y_leg * y_leg);
-  return {a, b, (x_leg - b * cos_pitch_) / sin_pitch_};
+  return {r * std::sin(phi), b, (leg_point(phi).x - b * cos_pitch_) / sin_pitch_};
 }
 
 Eigen::Vector3d SaddleCurve::derivative(double phi) const {
   const double r = geometry_.pipe_radius_mm;
-  const double R = geometry_.leg_radius_mm;
   const double a = r * std::sin(phi);
   const double b = r * std::cos(phi);
-  const double y_leg = geometry_.offset_mm + a;
-  const double x_leg = std::sqrt(R * R - y_leg * y_leg);
+  const LegPoint leg = leg_point(phi);
   // d(a, b)/dphi = (b, -a); d x_leg/dphi = -y_leg b / x_leg.
-  return {b, -a, (-y_leg * b / x_leg + a * cos_pitch_) / sin_pitch_};
+  return {b, -a, (-leg.y * leg.b_over_x + a * cos_pitch_) / sin_pitch_};
+}
+
+std::vector<double> SaddleCurve::corners() const {
+  std::vector<double> out;
+  if (gap_plus_ == 0.0) out.push_back(kHalfPi);
+  if (gap_minus_ == 0.0) out.push_back(3.0 * kHalfPi);
+  return out;
 }
 
 Eigen::Vector3d SaddleCurve::pipe_normal(double phi) const { return {std::sin(phi), std::cos(phi), 0.0}; }
 
 // The cylinder's outward normal (x_L, y_L, 0) / R expressed in P: (y_L, x_L cos, x_L sin) / R.
 Eigen::Vector3d SaddleCurve::leg_normal(double phi) const {
-  const double R = geometry_.leg_radius_mm;
-  const double y_leg = geometry_.offset_mm + geometry_.pipe_radius_mm * std::sin(phi);
-  const double x_leg = std::sqrt(R * R - y_leg * y_leg);
-  return Eigen::Vector3d(y_leg, x_leg * cos_pitch_, x_leg * sin_pitch_).normalized();
+  const LegPoint leg = leg_point(phi);
+  return Eigen::Vector3d(leg.y, leg.x * cos_pitch_, leg.x * sin_pitch_).normalized();
 }
 
 // Eq. 10-11 generalised: the angle between the outward normals, by atan2 so that it stays accurate near 0 and pi.
@@ -105,23 +137,32 @@ double SaddleCurve::dihedral(double phi) const {
 double SaddleCurve::pose(double phi, double start_pose_rad) const { return kHalfPi - dihedral(phi) + start_pose_rad; }
 
 // Eq. 19-23: the seam's tangent line is the intersection of the two tangent planes, direction n_pipe x n_leg; alpha
-// is its angle with the pipe axis z_P.
-double SaddleCurve::sin_alpha(double phi) const {
-  const Eigen::Vector3d tangent = pipe_normal(phi).cross(leg_normal(phi));
-  return tangent.head<2>().norm() / tangent.norm();
-}
+// is its angle with the pipe axis z_P. That direction is dP/dphi, whose part across the axis is (b, -a), of length r:
+// sin(alpha) = r / |dP/dphi|, which stays defined where the two surfaces touch (n_pipe = n_leg at a corner).
+double SaddleCurve::sin_alpha(double phi) const { return geometry_.pipe_radius_mm / derivative(phi).norm(); }
 
-double SaddleCurve::arc_length(double phi0, double phi1) const {
-  const double span = phi1 - phi0;
-  if (!(span > 0.0)) return 0.0;
-  const int panels = std::max(1, static_cast<int>(std::ceil(span / kMaxPanelRad)));
-  const double half = 0.5 * span / panels;
-  double sum = 0.0;
-  for (int k = 0; k < panels; ++k) {
-    const double mid = phi0 + (2 * k + 1) * half;
-    for (std::size_t j = 0; j < kNodes.size(); ++j) sum += kWeights[j] * derivative(mid + half * kNodes[j]).norm();
+// Adaptive Gauss-Legendre (fitting/arc_length.h), split at pi/2 and 3 pi/2: the seam's speed changes fastest there
+// as |offset| + r -> R (over an azimuth of about sqrt(2 gap / r)), and has a corner there at the limit; each piece is
+// then smooth up to its ends, where the bisection concentrates.
+double SaddleCurve::arc_length(double phi0, double phi1, bool* converged) const {
+  if (converged != nullptr) *converged = true;
+  if (!(phi1 - phi0 > 0.0)) return 0.0;
+  std::vector<double> cuts = {phi0};
+  for (double k = std::floor(phi0 / kPi - 0.5) + 1.0; k * kPi + kHalfPi < phi1; k += 1.0) {
+    cuts.push_back(k * kPi + kHalfPi);
   }
-  return sum * half;
+  cuts.push_back(phi1);
+  ArcLengthOptions options;
+  options.relative_tolerance = kArcRelativeTolerance;
+  options.absolute_tolerance_mm = 1e-15 * geometry_.pipe_radius_mm;
+  const SpeedFunction speed = [this](double phi) { return derivative(phi).norm(); };
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const ArcLengthIntegral piece = integrate_arc_length(speed, cuts[i], cuts[i + 1], options);
+    if (!piece.converged && converged != nullptr) *converged = false;
+    sum += piece.length_mm;
+  }
+  return sum;
 }
 
 double SaddleCurve::pipe_residual(const Eigen::Vector3d& p_P) const {

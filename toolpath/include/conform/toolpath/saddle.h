@@ -27,16 +27,19 @@ enum class SaddleStepRule { kEqualAngle, kVariableAngle, kArcLength };
 const char* to_string(SaddleStepRule rule);
 
 struct SaddleOptions {
-  SaddleGeometry geometry;                     // R, r, pitch, offset; defaults: the paper's R 600, r 150, T joint
-  double start_pose_rad = 0.7853981633974483;  // phi0, the torch pose angle at theta = 0 (Eq. 12), rad; paper pi/4
+  SaddleGeometry geometry;  // R, r, pitch, offset; defaults: the paper's R 600, r 150, T joint
+  // phi of Eq. 12 (the paper's "starting pose angle"), rad, in (-pi, pi]: the torch pose angle where the two surfaces
+  // meet at a right angle (dihedral beta = pi/2); the pose is pi/2 - beta + phi. For the paper's joint beta(0) = pi/2
+  // and it is the pose at theta = 0; for a pitched or offset joint the pose at theta = 0 differs. Paper: pi/4.
+  double start_pose_rad = 0.7853981633974483;
   SaddleStepRule rule = SaddleStepRule::kEqualAngle;
-  double step_rad = 0.15707963267948966;  // equal-angle dtheta, rad, in (0, 2 pi]; default pi/20 (Table 1)
+  double step_rad = 0.15707963267948966;  // equal-angle dtheta, rad, in (0, pi); default pi/20 (Table 1)
   double speed_mm_per_s = 80.0 / 60.0;    // v, torch speed along the seam, mm/s; default 80 mm/min (paper)
   double period_s = 0.004;                // dT, interpolation period, s; default 4 ms
   std::size_t max_points = 10000000;      // refuse inputs that would need more points than this
 
-  // Checks the geometry, a finite start pose, and the values the chosen rule uses: step in (0, 2 pi], or speed and
-  // period positive with v dT no larger than r (a longer step cuts across the seam). Says why in *error.
+  // Checks the geometry, the pose angle phi in (-pi, pi], and the values the chosen rule uses: step in (0, pi), or
+  // speed and period positive with v dT no larger than r (a longer step cuts across the seam). Says why in *error.
   bool IsValid(std::string* error) const;
 };
 
@@ -50,7 +53,9 @@ struct SaddlePoint {
 struct SaddleResult {
   std::vector<SaddlePoint> points;  // first at theta 0, last at theta 2 pi (the same seam point: a closed path)
   SaddleStepRule rule = SaddleStepRule::kEqualAngle;
-  bool converged = false;   // every per-step equation solved to tolerance (always true for equal-angle)
+  // every per-step equation solved to tolerance, the seam's length integral converged and the path (chords) not longer
+  // than the seam
+  bool converged = false;
   std::string termination;  // why converged is false, or "ok"
   int max_iterations = 0;   // most solver iterations any step needed (0 for equal-angle)
 
@@ -61,7 +66,8 @@ struct SaddleResult {
   double speed_ripple_pct = 0.0;   // 100 (max - min) / mean of the full steps' 3D lengths
   double last_step_mm = 0.0;       // the step landing on 2 pi
   bool last_step_partial = false;  // true when that step was shortened
-  std::size_t full_steps = 0;
+  std::size_t corner_steps = 0;    // steps shortened to end on a corner of the seam (|offset| + r = R)
+  std::size_t full_steps = 0;      // steps in the figures above: all but the shortened ones
 
   double curve_length_mm = 0.0;  // arc length of the seam (quadrature), mm
   double path_length_mm = 0.0;   // sum of the 3D steps (the polyline through the points), mm
