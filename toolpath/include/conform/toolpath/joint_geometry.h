@@ -5,6 +5,7 @@
 // t_l_out = n_l x t (Eq. 6). Everything in the stub frame S. "Outward" is away from each tube's axis, whichever way
 // the mesh's faces wind (the stub is scanned from inside).
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -63,9 +64,11 @@ PathFrame path_frame(double phi_rad, const Eigen::Vector3d& p, const Eigen::Vect
                      const Eigen::Vector3d& leg_normal);
 
 // The frames of every path point: normals by PCA of the k nearest vertices of the stub mesh and of the leg mesh
-// (both in S). Throws conform::Error when the options are invalid or a mesh has fewer than k vertices.
+// (both in S). *refined (if given): the points the refinement moved (k_refine > 0). Throws conform::Error when the
+// options are invalid or a mesh has fewer than k vertices.
 std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
                                       const Mesh& stub_S, const TubeAxis& stub_axis, const Mesh& leg_S,
-                                      const TubeAxis& leg_axis, const JointGeometryOptions& options);
+                                      const TubeAxis& leg_axis, const JointGeometryOptions& options,
+                                      std::size_t* refined = nullptr);
 
 }  // namespace conform
