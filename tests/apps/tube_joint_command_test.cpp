@@ -98,8 +98,8 @@ TEST(TubeJointCommand, AJointThatDoesNotMeetIsExitOneWithTheConditionAndNoFile) 
   EXPECT_EQ(r.exit_code, 1) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["closed"], false);
-  EXPECT_EQ(j["condition"], "1a");
-  EXPECT_NE(r.err.find("(1a)"), std::string::npos) << r.err;
+  EXPECT_EQ(j["condition"], "intersect");
+  EXPECT_NE(r.err.find("[intersect]"), std::string::npos) << r.err;
   EXPECT_EQ(out.listing(), "");
 }
 
