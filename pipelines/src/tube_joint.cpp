@@ -143,9 +143,11 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
   report(options.progress, "path", 0.0);
   const int k_quality = std::min<int>(40, static_cast<int>(std::min(leg_S.vertices.size(), stub.vertices.size())));
   if (k_quality >= 6) {
-    solution.leg_quality = estimate_scan_quality(leg_S, main.graph.vertices, k_quality);
-    solution.stub_quality = estimate_scan_quality(stub, main.graph.vertices, k_quality);
+    solution.leg_quality = estimate_scan_quality(leg_S, main.graph.vertices, k_quality, 96);
+    solution.stub_quality = estimate_scan_quality(stub, main.graph.vertices, k_quality, 96);
   }
+  const double sin_beta = std::max(0.05, min_crossing_sine(solution.leg_quality, solution.stub_quality));
+  solution.min_crossing_deg = std::asin(std::min(1.0, sin_beta)) * 180.0 / 3.141592653589793;
   warn_coarse("leg", solution.leg_quality, &solution.warnings);
   warn_coarse("stub", solution.stub_quality, &solution.warnings);
   AzimuthOrderOptions order_options;
@@ -155,7 +157,7 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
           : std::max(0.05, TubeJointSolveOptions::kBacktrackEdges *
                                    std::max(solution.leg_quality.edge_mm, solution.stub_quality.edge_mm) +
                                TubeJointSolveOptions::kBacktrackSigmas *
-                                   std::max(solution.leg_quality.noise_mm, solution.stub_quality.noise_mm));
+                                   std::max(solution.leg_quality.noise_mm, solution.stub_quality.noise_mm) / sin_beta);
   solution.backtrack_tolerance_mm = order_options.backtrack_tolerance_mm;
   const double n = static_cast<double>(main.graph.vertices.size());
   order_options.smoothing_mm2 = options.sampling.smoothing_rms_mm > 0.0

@@ -72,8 +72,8 @@ TEST(TubeJointCommand, WritesPathCutAndWeldWithTheIssuesHeadersAndSameBytesOnARe
   EXPECT_GT(j["max_step_mm"].get<double>(), j["min_step_mm"].get<double>());
   const std::string path = test::read_bytes(out.file("path.csv"));
   EXPECT_EQ(first_line(path), "phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz");
-  EXPECT_EQ(first_line(test::read_bytes(out.file("cut.csv"))), "phi_rad,x_mm,y_mm,z_mm,dx,dy,dz");
-  EXPECT_EQ(first_line(test::read_bytes(out.file("weld.csv"))), "phi_rad,x_mm,y_mm,z_mm,dx,dy,dz");
+  EXPECT_EQ(first_line(test::read_bytes(out.file("cut.csv"))), "phi_rad,x_mm,y_mm,z_mm,dx,dy,dz,alpha_rad,psi_rad");
+  EXPECT_EQ(first_line(test::read_bytes(out.file("weld.csv"))), "phi_rad,x_mm,y_mm,z_mm,dx,dy,dz,alpha_rad,psi_rad");
   EXPECT_EQ(std::count(path.begin(), path.end(), '\n'), 181);
   ASSERT_EQ(test::run(CONFORM_EXE, args).exit_code, 0);
   EXPECT_EQ(test::read_bytes(out.file("path.csv")), path);

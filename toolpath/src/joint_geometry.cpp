@@ -111,7 +111,9 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
       const bool quadric = options.fit == NormalFit::kQuadric;
       const LocalQuadric stub = fit_local_quadric(neighbours(stub_tree, stub_S, p, options.k_refine), p, quadric);
       const LocalQuadric leg = fit_local_quadric(neighbours(leg_tree, leg_S, p, options.k_refine), p, quadric);
-      if (!refine_seam_point(stub, leg, options.max_refine_mm, &p)) {
+      // The fits hold within their patches: a move up to half the smaller patch's radius is trusted.
+      const double limit = std::max(options.max_refine_mm, 0.5 * std::min(stub.scale, leg.scale));
+      if (!refine_seam_point(stub, leg, limit, &p)) {
         p = points[i];
       } else if (refined != nullptr) {
         ++*refined;

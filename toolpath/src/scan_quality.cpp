@@ -56,6 +56,7 @@ ScanQuality estimate_scan_quality(const Mesh& mesh, const std::vector<Eigen::Vec
     for (const Eigen::Vector3d& x : q) sum += patch.height(x) * patch.height(x);
     // The quadric has 6 parameters: the residual sum estimates (n - 6) sigma^2.
     noise.push_back(std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, q.size() - 6))));
+    quality.normals.push_back(patch.gradient(points[s]).normalized());
     Eigen::Matrix2d hessian;
     hessian << 2.0 * patch.c[0], patch.c[1], patch.c[1], 2.0 * patch.c[2];
     const Eigen::Vector2d eigen = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(hessian).eigenvalues();
@@ -67,6 +68,14 @@ ScanQuality estimate_scan_quality(const Mesh& mesh, const std::vector<Eigen::Vec
   quality.curvature_per_mm = median(curvature);
   quality.edge_angle_deg = quality.edge_mm * quality.curvature_per_mm * 180.0 / 3.141592653589793;
   return quality;
+}
+
+double min_crossing_sine(const ScanQuality& a, const ScanQuality& b) {
+  double smallest = 1.0;
+  for (std::size_t i = 0; i < std::min(a.normals.size(), b.normals.size()); ++i) {
+    smallest = std::min(smallest, a.normals[i].cross(b.normals[i]).norm());
+  }
+  return smallest;
 }
 
 }  // namespace conform

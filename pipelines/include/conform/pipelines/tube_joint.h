@@ -31,7 +31,8 @@ struct TubeJointSolveOptions {
   MeshIntersectionOptions intersection;
   // Azimuth ordering: a vertex this far behind (arc on the stub, mm) is dropped, farther fails [azimuth]. < 0:
   // automatic, kBacktrackEdges x the larger edge length + kBacktrackSigmas x the larger noise of the two scans near
-  // the curve (scan_quality.h), at least 0.05 mm.
+  // the curve / sin(beta), beta the smallest angle between the surfaces there (scan_quality.h; noise sigma normal to
+  // the surfaces moves the seam by sigma / sin(beta) along them), at least 0.05 mm.
   double backtrack_tolerance_mm = -1.0;
   // Intersection loops shorter than this fraction of the longest are dropped as noise islands (reported); a loop at
   // least this long fails [one-curve]. In [0, 1).
@@ -43,7 +44,7 @@ struct TubeJointSolveOptions {
   ProgressFn progress;                   // stages "intersect", "path", "normals"
 
   static constexpr double kBacktrackEdges = 0.5;
-  static constexpr double kBacktrackSigmas = 6.0;
+  static constexpr double kBacktrackSigmas = 4.0;
   static constexpr double kCoarseEdgeAngleDeg = 2.0;  // warn when a mesh's edges turn the normals more than this
 
   bool IsValid(std::string* error) const;
@@ -69,6 +70,7 @@ struct TubeJointSolution {
   double max_backtrack_mm = 0.0;        // the largest backtrack let pass
   ScanQuality leg_quality;              // noise, edge, curvature near the curve
   ScanQuality stub_quality;
+  double min_crossing_deg = 90.0;       // the smallest angle between the surfaces at the quality samples
   std::size_t refined_points = 0;       // path points moved onto the local fits (k_refine > 0)
   ToolSafetyResult safety;
   double intersection_seconds = 0.0;

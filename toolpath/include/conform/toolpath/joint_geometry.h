@@ -34,7 +34,9 @@ struct JointGeometryOptions {
   // nearest vertices of each mesh), within the half-plane of its azimuth (so phi is kept), by Newton's method. This
   // averages the scanner noise of k vertices instead of taking one facet's. 0: off (the paper's point).
   int k_refine = 40;
-  double max_refine_mm = 3.0;  // a refinement that would move a point farther is not applied
+  // A refinement that would move a point farther than this, or than half the radius of the smaller local patch
+  // (k_refine vertices; the fits hold within it), is not applied.
+  double max_refine_mm = 3.0;
   bool IsValid(std::string* error) const;
 };
 

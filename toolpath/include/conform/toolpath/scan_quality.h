@@ -19,7 +19,12 @@ struct ScanQuality {
   double curvature_per_mm = 0.0;     // median of the largest principal curvature of the fits, 1/mm
   double edge_angle_deg = 0.0;       // edge_mm x curvature: how far the normals turn over one edge, deg
   std::size_t samples = 0;           // sample points used
+  std::vector<Eigen::Vector3d> normals;  // the fits' unit normals at the sample points (sign arbitrary)
 };
+
+// The smallest sine of the angle between two scans' surfaces over the sample points both were estimated at (the
+// same points and max_samples give the same samples): where the seam's position is most sensitive to noise.
+double min_crossing_sine(const ScanQuality& a, const ScanQuality& b);
 
 // At up to max_samples of `points` (evenly spread), from the k nearest vertices of the mesh. Throws conform::Error
 // when the mesh has fewer than 6 vertices or k < 6.
