@@ -100,5 +100,28 @@ TEST(TubeJointFailures, ACurveBesideTheAxisIsNotParameterisableByAzimuth) {
   EXPECT_NE(s.termination.find("azimuth"), std::string::npos) << s.termination;
 }
 
+// A triangle soup (every face with its own three vertices, as some PLY writers give) is welded first: the same path
+// as the shared-vertex mesh, not an "open curve" at every facet edge.
+TEST(TubeJointRobustness, ATriangleSoupGivesTheSamePathAsTheWeldedMesh) {
+  const test::JointCase c = coarse();
+  const TubeJointScans scans = generate_tube_joint(test::joint_options(c));
+  Mesh soup;
+  for (const Face& f : scans.leg_L.faces) {
+    const auto base = static_cast<std::int32_t>(soup.vertices.size());
+    for (const std::int32_t v : f) soup.vertices.push_back(scans.leg_L.vertices[static_cast<std::size_t>(v)]);
+    soup.faces.push_back({base, base + 1, base + 2});
+  }
+  const Eigen::Isometry3d T_S_L = T_L_S(test::joint_spec(c)).inverse();
+  const TubeJointSolution welded = solve(scans.leg_L, scans.stub_S, T_S_L);
+  const TubeJointSolution from_soup = solve(soup, scans.stub_S, T_S_L);
+  ASSERT_TRUE(welded.ok) << welded.termination;
+  ASSERT_TRUE(from_soup.ok) << from_soup.termination;
+  EXPECT_EQ(from_soup.leg_welded_vertices, soup.vertices.size() - scans.leg_L.vertices.size());
+  ASSERT_EQ(from_soup.frames.size(), welded.frames.size());
+  for (std::size_t i = 0; i < welded.frames.size(); ++i) {
+    EXPECT_LT((from_soup.frames[i].point - welded.frames[i].point).norm(), 1e-9) << i;
+  }
+}
+
 }  // namespace
 }  // namespace conform
