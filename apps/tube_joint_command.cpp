@@ -73,6 +73,9 @@ class TubeJointCommand : public Command {
     c.add_option("--backtrack-tolerance", o_.solve.backtrack_tolerance_mm,
                  "Largest step back in azimuth let pass along the intersection (arc on the stub), mm; < 0: "
                  "automatic, 0.5 edge + 6 noise of the scans near the seam");
+    c.add_option("--max-facet-error", o_.solve.max_facet_error_mm,
+                 "Largest seam error the meshes' facets alone may cause, (s_leg + s_stub) / sin(crossing angle), mm; "
+                 "coarser meshes exit 1");
     c.add_option("--island-ratio", o_.solve.max_island_ratio,
                  "Intersection loops shorter than this fraction of the longest are dropped as noise islands; "
                  "longer ones fail");
@@ -156,6 +159,10 @@ class TubeJointCommand : public Command {
       warn("tube-joint: a tool would stand inside material: " + s.termination + "; no file written");
       return 1;
     }
+    if (!s.ok && s.check.condition == "coarse") {
+      warn("tube-joint: the scans are too coarse for a path: " + s.termination + "; no file written");
+      return 1;
+    }
     if (!s.ok) {
       warn("tube-joint: the intersection is not one closed curve the tool can follow: " + s.termination +
            "; no file written");
@@ -228,6 +235,8 @@ class TubeJointCommand : public Command {
                                            {"edge_angle_deg", q->edge_angle_deg}};
     }
     (*j)["refined_points"] = s.refined_points;
+    (*j)["min_crossing_deg"] = s.min_crossing_deg;
+    (*j)["facet_error_mm"] = s.facet_error_mm;
     (*j)["leg_radius_mm"] = r.leg_radius_mm;
     (*j)["stub_radius_mm"] = r.stub_radius_mm;
     const ToolSafetyResult& safety = s.safety;
@@ -258,6 +267,10 @@ class TubeJointCommand : public Command {
                 s.curve_vertices, s.candidate_pairs, s.intersection_seconds);
     if (!s.ok && s.check.condition == "safety") {
       std::printf("tools         NOT clear of the material: %s\n", s.termination.c_str());
+      return;
+    }
+    if (!s.ok && s.check.condition == "coarse") {
+      std::printf("scans         NOT fine enough: %s\n", s.termination.c_str());
       return;
     }
     if (!s.ok) {

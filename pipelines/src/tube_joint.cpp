@@ -60,6 +60,8 @@ bool TubeJointSolveOptions::IsValid(std::string* error) const {
       !safety.IsValid(&why)) {
   } else if (!std::isfinite(backtrack_tolerance_mm)) {
     why = "backtrack tolerance must be finite (< 0: automatic)";
+  } else if (!(max_facet_error_mm > 0.0)) {
+    why = "the largest facet error must be > 0 mm";
   } else if (!(max_island_ratio >= 0.0 && max_island_ratio < 1.0)) {
     why = "the island ratio must be in [0, 1)";
   }
@@ -150,6 +152,17 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
   solution.min_crossing_deg = std::asin(std::min(1.0, sin_beta)) * 180.0 / 3.141592653589793;
   warn_coarse("leg", solution.leg_quality, &solution.warnings);
   warn_coarse("stub", solution.stub_quality, &solution.warnings);
+  const auto sagitta = [](const ScanQuality& q) { return q.edge_mm * q.edge_mm * q.curvature_per_mm / 8.0; };
+  solution.facet_error_mm = (sagitta(solution.leg_quality) + sagitta(solution.stub_quality)) / sin_beta;
+  if (solution.facet_error_mm > options.max_facet_error_mm) {
+    std::ostringstream what;
+    what.precision(3);
+    what << "the meshes are too coarse for their curvature: their facets alone can put the seam "
+         << solution.facet_error_mm << " mm off (edges leg " << solution.leg_quality.edge_mm << " mm, stub "
+         << solution.stub_quality.edge_mm << " mm; the surfaces cross at " << solution.min_crossing_deg
+         << " deg at least; limit " << options.max_facet_error_mm << " mm): remesh finer";
+    return failed(solution, curve_failure("coarse", what.str(), main.graph.vertices.front()));
+  }
   AzimuthOrderOptions order_options;
   order_options.backtrack_tolerance_mm =
       options.backtrack_tolerance_mm >= 0.0

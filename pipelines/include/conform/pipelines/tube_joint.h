@@ -37,6 +37,9 @@ struct TubeJointSolveOptions {
   // Intersection loops shorter than this fraction of the longest are dropped as noise islands (reported); a loop at
   // least this long fails [one-curve]. In [0, 1).
   double max_island_ratio = 0.2;
+  // The facets alone can put the seam (s_leg + s_stub) / sin(beta) off, s = edge^2 x curvature / 8 the facet
+  // sagitta of each scan near the seam: above this the meshes are too coarse for a path (exit 1, [coarse]).
+  double max_facet_error_mm = 5.0;
   PathSamplingOptions sampling;          // azimuth or arc-length step; smoothing (applied before the azimuth test)
   JointGeometryOptions geometry;         // k nearest vertices per PCA normal
   ToolPathOptions tools;                 // groove angles, weld angle, standoffs
@@ -71,6 +74,7 @@ struct TubeJointSolution {
   ScanQuality leg_quality;              // noise, edge, curvature near the curve
   ScanQuality stub_quality;
   double min_crossing_deg = 90.0;       // the smallest angle between the surfaces at the quality samples
+  double facet_error_mm = 0.0;          // the bound above, for these scans
   std::size_t refined_points = 0;       // path points moved onto the local fits (k_refine > 0)
   ToolSafetyResult safety;
   double intersection_seconds = 0.0;
