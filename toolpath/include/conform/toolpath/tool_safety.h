@@ -5,8 +5,9 @@
 //   stub wall    radial distance from the stub axis (z_S) in (rho_p, rho_p + d_s), rho_p that of the seam point p
 //                (the scan is the stub's inner surface); for the weld, only its part left after the cut: the side of
 //                the cut face (the plane through p spanned by t and d_c) that holds the wall (Eq. 7).
-//   leg          radial distance from the leg axis below R_p, that of p (the scan is the leg's outer surface); the
-//                leg wall is the part within d_l of it.
+//   leg          radial distance from the leg axis below R_p, that of p (the scan is the leg's outer surface): solid
+//                for the test (a torch behind the leg wall is as unreachable as one in it), so d_l is not needed for
+//                outside welds; it is accepted for the inside grooves of mixed joints, which are not modelled.
 //   groove       a cut needs alpha_c < psi (the dihedral angle, tool_paths.h): otherwise d_c runs into the stub's
 //                hollow and the "groove" would remove the wall's end. Checked without wall thicknesses too.
 //
@@ -27,7 +28,7 @@ namespace conform {
 
 struct ToolSafetyOptions {
   double stub_wall_mm = 0.0;        // d_s, mm; 0: the wall thickness is unknown, the stub wall is not checked
-  double leg_wall_mm = 0.0;         // d_l, mm; 0: unknown (the leg is still checked: nothing below its surface)
+  double leg_wall_mm = 0.0;         // d_l, mm; not used by the outside-weld checks (above); >= 0
   double seam_clearance_mm = 0.5;   // mm, > 0
   int line_samples = 32;            // points tested along each approach line, >= 2
 
