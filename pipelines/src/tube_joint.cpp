@@ -127,6 +127,38 @@ MainCurve intersect_and_select(const Mesh& leg_L, const Mesh& stub_S, const Eige
   return main;
 }
 
+// Noise, edges and curvature of both scans near the seam; the facet error bound ([coarse] when above the limit) and
+// the backtrack tolerance (automatic unless given) they imply.
+CurveCheck measure_scans(const Mesh& leg_S, const Mesh& stub, const IntersectionGraph& curve,
+                         const TubeJointSolveOptions& options, TubeJointSolution* solution) {
+  const int k_quality = std::min<int>(40, static_cast<int>(std::min(leg_S.vertices.size(), stub.vertices.size())));
+  if (k_quality >= 6) {
+    solution->leg_quality = estimate_scan_quality(leg_S, curve.vertices, k_quality, 96);
+    solution->stub_quality = estimate_scan_quality(stub, curve.vertices, k_quality, 96);
+  }
+  const ScanQuality& leg = solution->leg_quality;
+  const ScanQuality& stb = solution->stub_quality;
+  const double sin_beta = std::max(0.05, min_crossing_sine(leg, stb));
+  solution->min_crossing_deg = std::asin(std::min(1.0, sin_beta)) * 180.0 / 3.141592653589793;
+  warn_coarse("leg", leg, &solution->warnings);
+  warn_coarse("stub", stb, &solution->warnings);
+  const auto sagitta = [](const ScanQuality& q) { return q.edge_mm * q.edge_mm * q.curvature_per_mm / 8.0; };
+  solution->facet_error_mm = (sagitta(leg) + sagitta(stb)) / sin_beta;
+  solution->backtrack_tolerance_mm =
+      options.backtrack_tolerance_mm >= 0.0
+          ? options.backtrack_tolerance_mm
+          : std::max(0.05, TubeJointSolveOptions::kBacktrackEdges * std::max(leg.edge_mm, stb.edge_mm) +
+                               TubeJointSolveOptions::kBacktrackSigmas * std::max(leg.noise_mm, stb.noise_mm) / sin_beta);
+  if (solution->facet_error_mm <= options.max_facet_error_mm) return {};
+  std::ostringstream what;
+  what.precision(3);
+  what << "the meshes are too coarse for their curvature: their facets alone can put the seam "
+       << solution->facet_error_mm << " mm off (edges leg " << leg.edge_mm << " mm, stub " << stb.edge_mm
+       << " mm; the surfaces cross at " << solution->min_crossing_deg << " deg at least; limit "
+       << options.max_facet_error_mm << " mm): remesh finer";
+  return curve_failure("coarse", what.str(), curve.vertices.front());
+}
+
 }  // namespace
 
 TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const Eigen::Isometry3d& T_S_L,
@@ -143,35 +175,10 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
   report(options.progress, "intersect", 1.0);
   if (!main.check.ok) return failed(solution, main.check);
   report(options.progress, "path", 0.0);
-  const int k_quality = std::min<int>(40, static_cast<int>(std::min(leg_S.vertices.size(), stub.vertices.size())));
-  if (k_quality >= 6) {
-    solution.leg_quality = estimate_scan_quality(leg_S, main.graph.vertices, k_quality, 96);
-    solution.stub_quality = estimate_scan_quality(stub, main.graph.vertices, k_quality, 96);
-  }
-  const double sin_beta = std::max(0.05, min_crossing_sine(solution.leg_quality, solution.stub_quality));
-  solution.min_crossing_deg = std::asin(std::min(1.0, sin_beta)) * 180.0 / 3.141592653589793;
-  warn_coarse("leg", solution.leg_quality, &solution.warnings);
-  warn_coarse("stub", solution.stub_quality, &solution.warnings);
-  const auto sagitta = [](const ScanQuality& q) { return q.edge_mm * q.edge_mm * q.curvature_per_mm / 8.0; };
-  solution.facet_error_mm = (sagitta(solution.leg_quality) + sagitta(solution.stub_quality)) / sin_beta;
-  if (solution.facet_error_mm > options.max_facet_error_mm) {
-    std::ostringstream what;
-    what.precision(3);
-    what << "the meshes are too coarse for their curvature: their facets alone can put the seam "
-         << solution.facet_error_mm << " mm off (edges leg " << solution.leg_quality.edge_mm << " mm, stub "
-         << solution.stub_quality.edge_mm << " mm; the surfaces cross at " << solution.min_crossing_deg
-         << " deg at least; limit " << options.max_facet_error_mm << " mm): remesh finer";
-    return failed(solution, curve_failure("coarse", what.str(), main.graph.vertices.front()));
-  }
+  const CurveCheck fine = measure_scans(leg_S, stub, main.graph, options, &solution);
+  if (!fine.ok) return failed(solution, fine);
   AzimuthOrderOptions order_options;
-  order_options.backtrack_tolerance_mm =
-      options.backtrack_tolerance_mm >= 0.0
-          ? options.backtrack_tolerance_mm
-          : std::max(0.05, TubeJointSolveOptions::kBacktrackEdges *
-                                   std::max(solution.leg_quality.edge_mm, solution.stub_quality.edge_mm) +
-                               TubeJointSolveOptions::kBacktrackSigmas *
-                                   std::max(solution.leg_quality.noise_mm, solution.stub_quality.noise_mm) / sin_beta);
-  solution.backtrack_tolerance_mm = order_options.backtrack_tolerance_mm;
+  order_options.backtrack_tolerance_mm = solution.backtrack_tolerance_mm;
   const double n = static_cast<double>(main.graph.vertices.size());
   order_options.smoothing_mm2 = options.sampling.smoothing_rms_mm > 0.0
                                     ? n * options.sampling.smoothing_rms_mm * options.sampling.smoothing_rms_mm

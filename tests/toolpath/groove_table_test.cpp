@@ -19,8 +19,8 @@ TEST(GrooveTable, QuartersAreTheFourRowTable) {
   std::string why;
   ASSERT_TRUE(q.IsValid(&why)) << why;
   EXPECT_NEAR(q.at(0.0), 0.1, 1e-15);
-  EXPECT_NEAR(q.at(kPi / 4), 0.3, 1e-15);             // half way toe -> side
-  EXPECT_NEAR(q.at(-kPi / 4), 0.3, 1e-15);            // half way side -> toe, cyclic
+  EXPECT_NEAR(q.at(kPi / 4), 0.3, 1e-15);              // half way toe -> side
+  EXPECT_NEAR(q.at(-kPi / 4), 0.3, 1e-15);             // half way side -> toe, cyclic
   EXPECT_NEAR(q.at(2.0 * kPi + kPi / 2), 0.5, 1e-15);  // wrapped
 }
 
@@ -67,8 +67,8 @@ TEST(GrooveTable, ImpossibleTablesAreInvalid) {
   EXPECT_FALSE(GrooveTable({{0.0, 0.1}, {4.0, 0.2}}, GrooveInterpolation::kSpline).IsValid(&why));
   EXPECT_FALSE(GrooveTable({}, GrooveInterpolation::kLinear).IsValid(&why));
   // A spline through steep rows overshoots below 0 deg between them.
-  EXPECT_FALSE(GrooveTable({{0.0, 0.0}, {0.3, 1.4}, {0.6, 0.0}, {3.0, 0.0}}, GrooveInterpolation::kSpline)
-                   .IsValid(&why));
+  EXPECT_FALSE(
+      GrooveTable({{0.0, 0.0}, {0.3, 1.4}, {0.6, 0.0}, {3.0, 0.0}}, GrooveInterpolation::kSpline).IsValid(&why));
   EXPECT_NE(why.find("overshoots"), std::string::npos) << why;
 }
 

@@ -24,7 +24,8 @@ TubeScan tube(double noise_mm) {
 
 std::vector<Eigen::Vector3d> samples(const Mesh& mesh) {
   std::vector<Eigen::Vector3d> points;
-  for (std::size_t i = mesh.vertices.size() / 4; i < mesh.vertices.size() * 3 / 4; i += 97) points.push_back(mesh.vertices[i]);
+  for (std::size_t i = mesh.vertices.size() / 4; i < mesh.vertices.size() * 3 / 4; i += 97)
+    points.push_back(mesh.vertices[i]);
   return points;
 }
 

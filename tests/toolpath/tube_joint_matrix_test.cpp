@@ -33,7 +33,7 @@ struct Corner {
   double noise_mm;
   double ovality_pct;
   double peaking_mm;
-  int must_pass;                         // of the five seeds
+  int must_pass;                           // of the five seeds
   std::set<std::string> allowed_failures;  // diagnoses allowed when a seed does not pass
 };
 
@@ -68,7 +68,8 @@ void run_corner(const Corner& k) {
     const TubeJointSolution s = solve_tube_joint(scans.leg_L, scans.stub_S, options.T_L_S.inverse(), {});
     if (!s.ok) {
       std::printf("%s seed %u: exit 1, %s\n", k.name, seed, s.termination.c_str());
-      EXPECT_TRUE(k.allowed_failures.count(s.check.condition) > 0) << k.name << " seed " << seed << ": " << s.termination;
+      EXPECT_TRUE(k.allowed_failures.count(s.check.condition) > 0)
+          << k.name << " seed " << seed << ": " << s.termination;
       continue;
     }
     double worst = 0.0;
@@ -79,11 +80,11 @@ void run_corner(const Corner& k) {
     }
     const double sagitta = test::facet_sagitta(scans.truth.leg) + test::facet_sagitta(scans.truth.stub);
     const double bound = 0.05 + sagitta + 2.0 * k.noise_mm / min_sin_beta;
-    std::printf("%s seed %u: to truth max %.3f mm (bound %.3f; beta min %.1f deg; %zu islands, %zu backtracks "
-                "dropped, max %.3f of %.3f mm; noise est leg %.3f stub %.3f; refined %zu of %zu)\n",
-                k.name, seed, worst, bound, std::asin(min_sin_beta) / kDeg, s.islands, s.dropped_vertices,
-                s.max_backtrack_mm, s.backtrack_tolerance_mm, s.leg_quality.noise_mm, s.stub_quality.noise_mm,
-                s.refined_points, s.frames.size());
+    std::printf(
+        "%s seed %u: to truth max %.3f mm (bound %.3f; beta min %.1f deg; %zu islands, %zu backtracks "
+        "dropped, max %.3f of %.3f mm; noise est leg %.3f stub %.3f; refined %zu of %zu)\n",
+        k.name, seed, worst, bound, std::asin(min_sin_beta) / kDeg, s.islands, s.dropped_vertices, s.max_backtrack_mm,
+        s.backtrack_tolerance_mm, s.leg_quality.noise_mm, s.stub_quality.noise_mm, s.refined_points, s.frames.size());
     EXPECT_LE(worst, bound) << k.name << " seed " << seed;
     ++passed;
   }
@@ -108,8 +109,17 @@ TEST(TubeJointMatrix, ShallowPitchHeavyDeformation) {
 
 // The stub's wall nearly tangent to the leg (offset 0.95 (R - r)) on a coarse 10 mm mesh with 0.5 mm noise.
 TEST(TubeJointMatrix, NearTangentCoarseNoisy) {
-  run_corner({"pitch 90, offset 0.95, 10 mm, 0.5 mm noise, 2 %, 5 mm", 90.0, 0.95, 600.0, 250.0, 10.0, 0.5, 2.0, 5.0,
-              4, {"azimuth", "one-curve", "jordan"}});
+  run_corner({"pitch 90, offset 0.95, 10 mm, 0.5 mm noise, 2 %, 5 mm",
+              90.0,
+              0.95,
+              600.0,
+              250.0,
+              10.0,
+              0.5,
+              2.0,
+              5.0,
+              4,
+              {"azimuth", "one-curve", "jordan"}});
 }
 
 // Noise-free, undeformed, negative offset: the facet sagitta alone.

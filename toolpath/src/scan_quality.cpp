@@ -38,7 +38,8 @@ double median_edge(const Mesh& mesh) {
 ScanQuality estimate_scan_quality(const Mesh& mesh, const std::vector<Eigen::Vector3d>& points, int k,
                                   std::size_t max_samples) {
   if (k < 6) throw Error("scan quality: k must be >= 6");
-  if (mesh.vertices.size() < static_cast<std::size_t>(k)) throw Error("scan quality: the mesh has fewer than k vertices");
+  if (mesh.vertices.size() < static_cast<std::size_t>(k))
+    throw Error("scan quality: the mesh has fewer than k vertices");
   ScanQuality quality;
   if (points.empty() || max_samples == 0) return quality;
   const KdTree tree(mesh.vertices);

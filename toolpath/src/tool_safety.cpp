@@ -26,10 +26,10 @@ void count(ToolViolation* v, double phi, const Eigen::Vector3d& where) {
 // The material model at one path point.
 struct LocalWalls {
   Eigen::Vector3d p;
-  double rho_p = 0.0;         // from the stub axis
-  double r_leg_p = 0.0;       // from the leg axis
-  double stub_wall = 0.0;     // 0: unknown
-  Eigen::Vector3d cut_normal; // normal of the cut face (t x d_c), oriented towards the wall that is left
+  double rho_p = 0.0;          // from the stub axis
+  double r_leg_p = 0.0;        // from the leg axis
+  double stub_wall = 0.0;      // 0: unknown
+  Eigen::Vector3d cut_normal;  // normal of the cut face (t x d_c), oriented towards the wall that is left
   TubeAxis leg_axis;
 
   bool in_stub_wall(const Eigen::Vector3d& x) const {
@@ -37,9 +37,7 @@ struct LocalWalls {
     const double rho = x.head<2>().norm();
     return rho > rho_p && rho < rho_p + stub_wall;
   }
-  bool in_cut_stub_wall(const Eigen::Vector3d& x) const {
-    return in_stub_wall(x) && (x - p).dot(cut_normal) > 0.0;
-  }
+  bool in_cut_stub_wall(const Eigen::Vector3d& x) const { return in_stub_wall(x) && (x - p).dot(cut_normal) > 0.0; }
   bool in_leg(const Eigen::Vector3d& x) const { return radial(x, leg_axis) < r_leg_p; }
 };
 
@@ -63,19 +61,59 @@ bool line_hits(const Eigen::Vector3d& tip, const Eigen::Vector3d& p, const ToolS
 std::string describe(const char* what, const ToolViolation& v, std::size_t points, const char* advice) {
   char text[400];
   std::snprintf(text, sizeof text, "%s at %zu of %zu points (first at azimuth %.1f deg, (%.3f, %.3f, %.3f) mm): %s",
-                what, v.count, points, v.first_phi_rad * kDeg, v.first_where.x(), v.first_where.y(),
-                v.first_where.z(), advice);
+                what, v.count, points, v.first_phi_rad * kDeg, v.first_where.x(), v.first_where.y(), v.first_where.z(),
+                advice);
   return text;
+}
+
+// What failed, where, and what to change, one sentence per kind.
+std::vector<std::string> describe_all(const ToolSafetyResult& r, std::size_t n, const ToolPathOptions& tool_options) {
+  char advice[300];
+  std::vector<std::string> problems;
+  if (r.groove_beyond_wall.count > 0) {
+    problems.push_back(
+        describe("the groove angle reaches the dihedral angle between leg and stub wall (the cut would "
+                 "run into the stub's hollow)",
+                 r.groove_beyond_wall, n, "lower the groove angle there"));
+  }
+  if (r.weld_tip_in_stub.count > 0) {
+    std::snprintf(advice, sizeof advice,
+                  "the weld angle %.1f deg must stay below the groove angle wherever the torch is to point into the "
+                  "groove, or the standoff must exceed d_s / sin(psi - alpha_w)",
+                  tool_options.weld_angle_rad * kDeg);
+    problems.push_back(describe("the weld torch's tip lies inside the stub wall", r.weld_tip_in_stub, n, advice));
+  }
+  if (r.weld_tip_in_leg.count > 0) {
+    problems.push_back(describe("the weld torch's tip lies below the leg's surface", r.weld_tip_in_leg, n,
+                                "raise the weld angle or shorten the standoff"));
+  }
+  if (r.cut_tip_in_stub.count > 0) {
+    problems.push_back(describe("the cutting torch's tip lies inside the stub wall", r.cut_tip_in_stub, n,
+                                "check the groove angles and the cut standoff"));
+  }
+  if (r.cut_line_in_stub.count > 0) {
+    problems.push_back(describe("the cutting torch's approach line crosses the stub wall", r.cut_line_in_stub, n,
+                                "shorten the cut standoff"));
+  }
+  if (r.weld_line_in_material.count > 0) {
+    problems.push_back(describe("the weld torch's approach line crosses the stub wall or the leg",
+                                r.weld_line_in_material, n, "change the weld angle or standoff"));
+  }
+  return problems;
 }
 
 }  // namespace
 
 bool ToolSafetyOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (!(std::isfinite(stub_wall_mm) && stub_wall_mm >= 0.0)) why << "stub wall " << stub_wall_mm << " mm must be >= 0";
-  else if (!(std::isfinite(leg_wall_mm) && leg_wall_mm >= 0.0)) why << "leg wall " << leg_wall_mm << " mm must be >= 0";
-  else if (!(seam_clearance_mm > 0.0)) why << "seam clearance must be > 0 mm";
-  else if (line_samples < 2) why << "line samples must be >= 2";
+  if (!(std::isfinite(stub_wall_mm) && stub_wall_mm >= 0.0))
+    why << "stub wall " << stub_wall_mm << " mm must be >= 0";
+  else if (!(std::isfinite(leg_wall_mm) && leg_wall_mm >= 0.0))
+    why << "leg wall " << leg_wall_mm << " mm must be >= 0";
+  else if (!(seam_clearance_mm > 0.0))
+    why << "seam clearance must be > 0 mm";
+  else if (line_samples < 2)
+    why << "line samples must be >= 2";
   if (why.tellp() == 0) return true;
   if (error != nullptr) *error = why.str();
   return false;
@@ -106,49 +144,22 @@ ToolSafetyResult check_tool_safety(const std::vector<PathFrame>& frames, const T
     const Eigen::Vector3d& cut_tip = tools.cut[i].position;
     const Eigen::Vector3d& weld_tip = tools.weld[i].position;
     Eigen::Vector3d where;
-    if (w.in_stub_wall(cut_tip)) count(&r.cut_tip_in_stub, f.phi_rad, cut_tip);
-    else if (line_hits(cut_tip, f.point, options, [&](const Eigen::Vector3d& x) { return w.in_stub_wall(x); }, &where))
+    if (w.in_stub_wall(cut_tip))
+      count(&r.cut_tip_in_stub, f.phi_rad, cut_tip);
+    else if (line_hits(
+                 cut_tip, f.point, options, [&](const Eigen::Vector3d& x) { return w.in_stub_wall(x); }, &where))
       count(&r.cut_line_in_stub, f.phi_rad, where);
     const bool weld_in_stub = w.in_cut_stub_wall(weld_tip);
     const bool weld_in_leg = w.in_leg(weld_tip);
     if (weld_in_stub) count(&r.weld_tip_in_stub, f.phi_rad, weld_tip);
     if (weld_in_leg) count(&r.weld_tip_in_leg, f.phi_rad, weld_tip);
     if (!weld_in_stub && !weld_in_leg &&
-        line_hits(weld_tip, f.point, options,
-                  [&](const Eigen::Vector3d& x) { return w.in_cut_stub_wall(x) || w.in_leg(x); }, &where))
+        line_hits(
+            weld_tip, f.point, options, [&](const Eigen::Vector3d& x) { return w.in_cut_stub_wall(x) || w.in_leg(x); },
+            &where))
       count(&r.weld_line_in_material, f.phi_rad, where);
   }
-  const std::size_t n = frames.size();
-  char advice[300];
-  std::vector<std::string> problems;
-  if (r.groove_beyond_wall.count > 0) {
-    problems.push_back(describe("the groove angle reaches the dihedral angle between leg and stub wall (the cut would "
-                                "run into the stub's hollow)", r.groove_beyond_wall, n,
-                                "lower the groove angle there"));
-  }
-  if (r.weld_tip_in_stub.count > 0) {
-    std::snprintf(advice, sizeof advice,
-                  "the weld angle %.1f deg must stay below the groove angle wherever the torch is to point into the "
-                  "groove, or the standoff must exceed d_s / sin(psi - alpha_w)",
-                  tool_options.weld_angle_rad * kDeg);
-    problems.push_back(describe("the weld torch's tip lies inside the stub wall", r.weld_tip_in_stub, n, advice));
-  }
-  if (r.weld_tip_in_leg.count > 0) {
-    problems.push_back(describe("the weld torch's tip lies below the leg's surface", r.weld_tip_in_leg, n,
-                                "raise the weld angle or shorten the standoff"));
-  }
-  if (r.cut_tip_in_stub.count > 0) {
-    problems.push_back(describe("the cutting torch's tip lies inside the stub wall", r.cut_tip_in_stub, n,
-                                "check the groove angles and the cut standoff"));
-  }
-  if (r.cut_line_in_stub.count > 0) {
-    problems.push_back(describe("the cutting torch's approach line crosses the stub wall", r.cut_line_in_stub, n,
-                                "shorten the cut standoff"));
-  }
-  if (r.weld_line_in_material.count > 0) {
-    problems.push_back(describe("the weld torch's approach line crosses the stub wall or the leg",
-                                r.weld_line_in_material, n, "change the weld angle or standoff"));
-  }
+  const std::vector<std::string> problems = describe_all(r, frames.size(), tool_options);
   r.ok = problems.empty();
   for (std::size_t k = 0; k < problems.size(); ++k) r.message += (k > 0 ? "; " : "") + problems[k];
   return r;

@@ -12,9 +12,9 @@
 namespace conform {
 
 struct MeshWeldResult {
-  Mesh mesh;                         // the welded mesh: the first vertex of each group keeps its double position
-  std::size_t merged_vertices = 0;   // vertices removed (welded into an earlier one)
-  std::size_t dropped_faces = 0;     // faces that collapsed
+  Mesh mesh;                        // the welded mesh: the first vertex of each group keeps its double position
+  std::size_t merged_vertices = 0;  // vertices removed (welded into an earlier one)
+  std::size_t dropped_faces = 0;    // faces that collapsed
 };
 
 // `what` names the mesh in errors. Normals, if any, are those of the kept vertices. Unchanged (merged_vertices == 0)

@@ -39,7 +39,7 @@ class GrooveTable {
   void prepare();
   std::vector<std::pair<double, double>> rows_;  // as given
   GrooveInterpolation interpolation_ = GrooveInterpolation::kLinear;
-  std::vector<double> phi_;     // the cyclic nodes in [0, 2 pi) (a 2 pi row dropped)
+  std::vector<double> phi_;  // the cyclic nodes in [0, 2 pi) (a 2 pi row dropped)
   std::vector<double> alpha_;
   std::vector<double> second_;  // the spline's second derivatives at the nodes
 };

@@ -14,11 +14,11 @@
 namespace conform {
 
 struct ScanQuality {
-  double noise_mm = 0.0;             // median over the sample points of the RMS residual of the local quadric fit
-  double edge_mm = 0.0;              // median edge length of the mesh's faces
-  double curvature_per_mm = 0.0;     // median of the largest principal curvature of the fits, 1/mm
-  double edge_angle_deg = 0.0;       // edge_mm x curvature: how far the normals turn over one edge, deg
-  std::size_t samples = 0;           // sample points used
+  double noise_mm = 0.0;                 // median over the sample points of the RMS residual of the local quadric fit
+  double edge_mm = 0.0;                  // median edge length of the mesh's faces
+  double curvature_per_mm = 0.0;         // median of the largest principal curvature of the fits, 1/mm
+  double edge_angle_deg = 0.0;           // edge_mm x curvature: how far the normals turn over one edge, deg
+  std::size_t samples = 0;               // sample points used
   std::vector<Eigen::Vector3d> normals;  // the fits' unit normals at the sample points (sign arbitrary)
 };
 

@@ -27,10 +27,10 @@
 namespace conform {
 
 struct ToolSafetyOptions {
-  double stub_wall_mm = 0.0;        // d_s, mm; 0: the wall thickness is unknown, the stub wall is not checked
-  double leg_wall_mm = 0.0;         // d_l, mm; not used by the outside-weld checks (above); >= 0
-  double seam_clearance_mm = 0.5;   // mm, > 0
-  int line_samples = 32;            // points tested along each approach line, >= 2
+  double stub_wall_mm = 0.0;       // d_s, mm; 0: the wall thickness is unknown, the stub wall is not checked
+  double leg_wall_mm = 0.0;        // d_l, mm; not used by the outside-weld checks (above); >= 0
+  double seam_clearance_mm = 0.5;  // mm, > 0
+  int line_samples = 32;           // points tested along each approach line, >= 2
 
   bool IsValid(std::string* error) const;
 };
@@ -44,14 +44,14 @@ struct ToolViolation {
 
 struct ToolSafetyResult {
   bool ok = true;
-  bool walls_checked = false;          // stub_wall_mm > 0
-  ToolViolation groove_beyond_wall;    // alpha_c >= psi
-  ToolViolation cut_tip_in_stub;       // the cutting torch's tip inside the stub wall
-  ToolViolation cut_line_in_stub;      // its approach line crosses the stub wall
-  ToolViolation weld_tip_in_stub;      // the weld torch's tip inside the (cut) stub wall
-  ToolViolation weld_tip_in_leg;       // the weld torch's tip below the leg's surface
-  ToolViolation weld_line_in_material; // its approach line crosses the stub wall or the leg
-  std::string message;                 // empty when ok: what fails, where, and what to change
+  bool walls_checked = false;           // stub_wall_mm > 0
+  ToolViolation groove_beyond_wall;     // alpha_c >= psi
+  ToolViolation cut_tip_in_stub;        // the cutting torch's tip inside the stub wall
+  ToolViolation cut_line_in_stub;       // its approach line crosses the stub wall
+  ToolViolation weld_tip_in_stub;       // the weld torch's tip inside the (cut) stub wall
+  ToolViolation weld_tip_in_leg;        // the weld torch's tip below the leg's surface
+  ToolViolation weld_line_in_material;  // its approach line crosses the stub wall or the leg
+  std::string message;                  // empty when ok: what fails, where, and what to change
 };
 
 // frames and tools of the same path (tool_paths.h); leg_axis in S. Throws conform::Error for invalid options or
