@@ -7,6 +7,7 @@
 
 #include "command.h"
 #include "number_list.h"
+#include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/tube_joint.h"
 #include "terminal.h"
@@ -23,6 +24,28 @@ std::array<double, 4> parse_groove(const std::string& text) {
   return {radians(v[0]), radians(v[1]), radians(v[2]), radians(v[3])};
 }
 
+// CSV `phi_deg,alpha_deg`: the groove table of Eq. (5), generalised.
+std::vector<std::pair<double, double>> read_groove_table(const std::string& path) {
+  const CsvTable table = read_csv(path, {"phi_deg", "alpha_deg"});
+  const Eigen::MatrixXd rows = table.numbers({"phi_deg", "alpha_deg"});
+  if (rows.rows() == 0) throw Error(path + ": the groove table has no rows");
+  std::vector<std::pair<double, double>> out;
+  for (Eigen::Index i = 0; i < rows.rows(); ++i) out.emplace_back(radians(rows(i, 0)), radians(rows(i, 1)));
+  GrooveTable check(out, GrooveInterpolation::kLinear);
+  std::string why;
+  if (!check.IsValid(&why)) throw Error(path + ": " + why);
+  return out;
+}
+
+std::vector<double> parse_walls(const std::string& text) {
+  const bool two = text.find(',') != std::string::npos;
+  const std::vector<double> v = parse_numbers(text, two ? 2 : 1, "--wall-thickness", "MM or LEG_MM,STUB_MM");
+  for (const double d : v) {
+    if (!(d > 0.0)) throw Error("--wall-thickness " + text + ": wall thicknesses must be > 0 mm");
+  }
+  return two ? v : std::vector<double>{v[0], v[0]};
+}
+
 class TubeJointCommand : public Command {
  public:
   void configure(CLI::App& c) override {
@@ -34,9 +57,9 @@ class TubeJointCommand : public Command {
                                       "Angle between the leg and stub axes, deg, (0, 90]; required unless --leg-pose");
     CLI::Option* offset =
         c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm");
-    CLI::Option* protrusion =
-        c.add_option("--protrusion", o_.spec.protrusion_mm,
-                     "Stub's distal end to the leg axis along the stub axis, mm; default 0 (give it)");
+    CLI::Option* protrusion = c.add_option("--protrusion", o_.spec.protrusion_mm,
+                                           "Stub's distal end to the leg axis along the stub axis, mm, > 0; required "
+                                           "unless --leg-pose");
     CLI::Option* pose = c.add_option("--leg-pose", o_.leg_pose_path,
                                      "4x4 text T_S_L (leg coordinates into the stub frame) instead of the three above");
     pose->excludes(pitch)->excludes(offset)->excludes(protrusion);
@@ -45,6 +68,20 @@ class TubeJointCommand : public Command {
                  "frame then comes from its cylinder fit + markers; default none (the mesh is in L)");
     c.add_option("--stub-markers", o_.stub_markers_path,
                  "The same for the stub (known positions in S); default none (the mesh is in S)");
+    c.add_option("--marker-tolerance", o_.marker_tolerance_mm,
+                 "Largest distance of a registered marker from its known position, mm; farther is bad input");
+    c.add_option("--backtrack-tolerance", o_.solve.backtrack_tolerance_mm,
+                 "Largest step back in azimuth let pass along the intersection (arc on the stub), mm; < 0: "
+                 "automatic, 0.5 edge + 6 noise of the scans near the seam");
+    c.add_option("--max-facet-error", o_.solve.max_facet_error_mm,
+                 "Largest seam error the meshes' facets alone may cause, (s_leg + s_stub) / sin(crossing angle), mm; "
+                 "coarser meshes exit 1");
+    c.add_option("--island-ratio", o_.solve.max_island_ratio,
+                 "Intersection loops shorter than this fraction of the longest are dropped as noise islands; "
+                 "longer ones fail");
+    c.add_option("--wall-thickness", walls_,
+                 "Wall thickness, mm: one value for both, or LEG_MM,STUB_MM; checks every tool tip and approach line "
+                 "against the walls (exit 1 when a tool is inside material)");
     CLI::Option* step_deg = c.add_option("--step-deg", step_deg_, "Resample at equal azimuth steps, deg");
     CLI::Option* step_mm =
         c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm");
@@ -56,10 +93,13 @@ class TubeJointCommand : public Command {
     CLI::Option* smoothing_rms = c.add_option("--smoothing-rms", smoothing_rms_mm_,
                                               "Smoothing target as RMS per intersection point, mm");
     smoothing->excludes(smoothing_rms);
-    c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg");
-    c.add_option("--groove-interpolation", interpolation_, "linear or quadratic (Eq. 5)")
-        ->check(CLI::IsMember({"linear", "quadratic"}));
-    c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg");
+    CLI::Option* groove = c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg, [0, 90)");
+    c.add_option("--groove-table", groove_table_,
+                 "CSV phi_deg,alpha_deg: groove angles at any azimuths (Eq. 5), instead of --groove-deg")
+        ->excludes(groove);
+    c.add_option("--groove-interpolation", interpolation_, "linear, quadratic or spline (periodic cubic) (Eq. 5)")
+        ->check(CLI::IsMember({"linear", "quadratic", "spline"}));
+    c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg, [0, 90)");
     c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm");
     c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm");
     c.add_option("--k-normals", o_.solve.geometry.k_normals,
@@ -75,10 +115,12 @@ class TubeJointCommand : public Command {
     c.add_flag("--quiet", quiet_, "No progress on stderr");
     step_mm_option_ = step_mm;
     pitch_ = pitch;
+    protrusion_ = protrusion;
   }
 
   void declare_files(OutputSet& files) override {
-    files.add_inputs({o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path});
+    files.add_inputs({o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path,
+                      groove_table_});
     files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld});
   }
 
@@ -86,6 +128,9 @@ class TubeJointCommand : public Command {
     TubeJointJobOptions o = o_;
     if (o.leg_pose_path.empty() && pitch_->count() == 0) {
       throw Error("tube-joint: give the joint as --pitch-deg A --offset MM --protrusion MM, or --leg-pose FILE");
+    }
+    if (o.leg_pose_path.empty() && protrusion_->count() == 0) {
+      throw Error("tube-joint: give --protrusion MM (the stub's distal end to the leg axis, along the stub axis)");
     }
     o.spec.pitch_rad = radians(pitch_deg_);
     if (step_mm_option_->count() > 0) {
@@ -97,8 +142,15 @@ class TubeJointCommand : public Command {
     o.solve.sampling.smoothing_mm2 = smoothing_mm2_;
     o.solve.sampling.smoothing_rms_mm = smoothing_rms_mm_;
     if (!groove_.empty()) o.solve.tools.groove_rad = parse_groove(groove_);
-    o.solve.tools.interpolation =
-        interpolation_ == "quadratic" ? GrooveInterpolation::kQuadratic : GrooveInterpolation::kLinear;
+    if (!groove_table_.empty()) o.solve.tools.groove_table_rad = read_groove_table(groove_table_);
+    o.solve.tools.interpolation = interpolation_ == "quadratic" ? GrooveInterpolation::kQuadratic
+                                  : interpolation_ == "spline"  ? GrooveInterpolation::kSpline
+                                                                : GrooveInterpolation::kLinear;
+    if (!walls_.empty()) {
+      const std::vector<double> walls = parse_walls(walls_);
+      o.solve.safety.leg_wall_mm = walls[0];
+      o.solve.safety.stub_wall_mm = walls[1];
+    }
     o.solve.tools.weld_angle_rad = radians(weld_deg_);
     o.solve.progress = stderr_progress(quiet_ || json_);
     const TubeJointJobResult r = run_tube_joint(o);
@@ -107,6 +159,15 @@ class TubeJointCommand : public Command {
       print_json(summary(r));
     } else {
       print_text(r);
+    }
+    for (const std::string& w : s.warnings) warn("tube-joint: " + w);
+    if (!s.ok && s.check.condition == "safety") {
+      warn("tube-joint: a tool would stand inside material: " + s.termination + "; no file written");
+      return 1;
+    }
+    if (!s.ok && s.check.condition == "coarse") {
+      warn("tube-joint: the scans are too coarse for a path: " + s.termination + "; no file written");
+      return 1;
     }
     if (!s.ok) {
       warn("tube-joint: the intersection is not one closed curve the tool can follow: " + s.termination +
@@ -145,7 +206,56 @@ class TubeJointCommand : public Command {
       j["where_mm"] = {s.check.where.x(), s.check.where.y(), s.check.where.z()};
       j["where_azimuth_deg"] = degrees(s.check.azimuth_rad);
     }
+    add_robustness(r, &j);
     return j;
+  }
+
+  static nlohmann::json violation(const ToolViolation& v) {
+    return {{"count", v.count}, {"first_azimuth_deg", v.count > 0 ? degrees(v.first_phi_rad) : 0.0}};
+  }
+
+  static nlohmann::json reference(const TubeReferenceResult& r) {
+    return {{"method", r.method},
+            {"residuals_mm", r.marker_residuals_mm},
+            {"rms_mm", r.marker_rms_mm},
+            {"max_mm", r.marker_max_mm},
+            {"fit_axis_disagreement_deg", r.axis_disagreement_deg},
+            {"fit_axis_offset_mm", r.axis_offset_mm}};
+  }
+
+  static void add_robustness(const TubeJointJobResult& r, nlohmann::json* j) {
+    const TubeJointSolution& s = r.solution;
+    (*j)["warnings"] = s.warnings;
+    (*j)["leg_welded_vertices"] = s.leg_welded_vertices;
+    (*j)["stub_welded_vertices"] = s.stub_welded_vertices;
+    (*j)["islands"] = s.islands;
+    (*j)["longest_island_mm"] = s.longest_island_mm;
+    (*j)["merged_vertices"] = s.merged_vertices;
+    (*j)["backtrack_tolerance_mm"] = s.backtrack_tolerance_mm;
+    (*j)["max_backtrack_mm"] = s.max_backtrack_mm;
+    for (const auto& [name, q] : {std::pair<const char*, const ScanQuality*>{"leg", &s.leg_quality},
+                                  std::pair<const char*, const ScanQuality*>{"stub", &s.stub_quality}}) {
+      (*j)[std::string(name) + "_scan"] = {{"noise_mm", q->noise_mm},
+                                           {"edge_mm", q->edge_mm},
+                                           {"curvature_radius_mm", q->curvature_per_mm > 0 ? 1.0 / q->curvature_per_mm : 0.0},
+                                           {"edge_angle_deg", q->edge_angle_deg}};
+    }
+    (*j)["refined_points"] = s.refined_points;
+    (*j)["min_crossing_deg"] = s.min_crossing_deg;
+    (*j)["facet_error_mm"] = s.facet_error_mm;
+    (*j)["leg_radius_mm"] = r.leg_radius_mm;
+    (*j)["stub_radius_mm"] = r.stub_radius_mm;
+    const ToolSafetyResult& safety = s.safety;
+    (*j)["safety"] = {{"ok", safety.ok},
+                      {"walls_checked", safety.walls_checked},
+                      {"groove_beyond_wall", violation(safety.groove_beyond_wall)},
+                      {"cut_tip_in_stub", violation(safety.cut_tip_in_stub)},
+                      {"cut_line_in_stub", violation(safety.cut_line_in_stub)},
+                      {"weld_tip_in_stub", violation(safety.weld_tip_in_stub)},
+                      {"weld_tip_in_leg", violation(safety.weld_tip_in_leg)},
+                      {"weld_line_in_material", violation(safety.weld_line_in_material)}};
+    if (!r.leg_marker_residuals_mm.empty()) (*j)["leg_markers"] = reference(r.leg_reference);
+    if (!r.stub_marker_residuals_mm.empty()) (*j)["stub_markers"] = reference(r.stub_reference);
   }
 
   static void print_text(const TubeJointJobResult& r) {
@@ -153,20 +263,36 @@ class TubeJointCommand : public Command {
     std::printf("meshes        leg %zu faces, stub %zu faces\n", r.leg_faces, r.stub_faces);
     for (const auto* residuals : {&r.leg_marker_residuals_mm, &r.stub_marker_residuals_mm}) {
       if (residuals->empty()) continue;
-      std::printf("markers       %s:", residuals == &r.leg_marker_residuals_mm ? "leg" : "stub");
+      const bool leg = residuals == &r.leg_marker_residuals_mm;
+      const TubeReferenceResult& ref = leg ? r.leg_reference : r.stub_reference;
+      std::printf("markers       %s (%s): residuals", leg ? "leg" : "stub", ref.method.c_str());
       for (const double d : *residuals) std::printf(" %.3f", d);
-      std::printf(" mm\n");
+      std::printf(" mm; cylinder fit off by %.2f deg, %.2f mm\n", ref.axis_disagreement_deg, ref.axis_offset_mm);
     }
     std::printf("intersection  %zu segments, %zu curve vertices (%zu triangle pairs tested), %.3f s\n", s.segments,
                 s.curve_vertices, s.candidate_pairs, s.intersection_seconds);
+    if (!s.ok && s.check.condition == "safety") {
+      std::printf("tools         NOT clear of the material: %s\n", s.termination.c_str());
+      return;
+    }
+    if (!s.ok && s.check.condition == "coarse") {
+      std::printf("scans         NOT fine enough: %s\n", s.termination.c_str());
+      return;
+    }
     if (!s.ok) {
       std::printf("curve         NOT a single closed curve: %s\n", s.termination.c_str());
       return;
     }
-    std::printf("curve         closed, one turn about the stub axis (%zu vertices dropped as backtracking)\n",
-                s.dropped_vertices);
-    std::printf("path          %zu points, length %.3f mm, step min %.3f max %.3f mm%s\n", s.path.points.size(),
-                s.path.length_mm, s.path.min_step_mm, s.path.max_step_mm, s.path.smoothed ? ", smoothed" : "");
+    std::printf("scans         noise leg %.3f stub %.3f mm, edge leg %.2f stub %.2f mm\n", s.leg_quality.noise_mm,
+                s.stub_quality.noise_mm, s.leg_quality.edge_mm, s.stub_quality.edge_mm);
+    std::printf("curve         closed, one turn about the stub axis (%zu islands dropped; %zu vertices dropped as "
+                "backtracking, largest %.3f mm, tolerance %.3f mm)\n",
+                s.islands, s.dropped_vertices, s.max_backtrack_mm, s.backtrack_tolerance_mm);
+    std::printf("path          %zu points (%zu refined), length %.3f mm, step min %.3f max %.3f mm%s\n",
+                s.path.points.size(), s.refined_points, s.path.length_mm, s.path.min_step_mm, s.path.max_step_mm,
+                s.path.smoothed ? ", smoothed" : "");
+    std::printf("tools         %s\n", s.safety.walls_checked ? "clear of the walls (tips and approach lines checked)"
+                                                               : "walls not checked (give --wall-thickness)");
     std::printf("time          %.3f s in all\n", s.total_seconds);
     for (const std::string& path : r.written) std::printf("wrote         %s\n", path.c_str());
   }
@@ -178,12 +304,15 @@ class TubeJointCommand : public Command {
   double smoothing_mm2_ = -1.0;
   double smoothing_rms_mm_ = 0.0;
   std::string groove_;
+  std::string groove_table_;
+  std::string walls_;
   std::string interpolation_ = "linear";
   double weld_deg_ = 45.0;
   bool json_ = false;
   bool quiet_ = false;
   CLI::Option* step_mm_option_ = nullptr;
   CLI::Option* pitch_ = nullptr;
+  CLI::Option* protrusion_ = nullptr;
 };
 
 }  // namespace

@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
 
 #include "conform/core/error.h"
+#include "conform/registration/horn.h"
 
 namespace conform {
 namespace {
@@ -73,6 +78,48 @@ Eigen::Isometry3d tube_frame_from_markers(const Eigen::Vector3d& axis_point, con
   return T;
 }
 
+namespace {
+
+// The markers span a plane (not one line): their second principal extent is not negligible.
+bool spans_a_plane(const std::vector<Eigen::Vector3d>& markers, double collinear_ratio) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& m : markers) mean += m;
+  mean /= static_cast<double>(markers.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& m : markers) scatter += (m - mean) * (m - mean).transpose();
+  const Eigen::Vector3d eigen = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvalues();  // ascending
+  return eigen(2) > 0.0 && std::sqrt(std::max(0.0, eigen(1)) / eigen(2)) >= collinear_ratio;
+}
+
+void set_residuals(const Eigen::Isometry3d& T, const std::vector<Eigen::Vector3d>& scan,
+                   const std::vector<Eigen::Vector3d>& tube, TubeReferenceResult* result) {
+  result->marker_residuals_mm.clear();
+  for (std::size_t i = 0; i < scan.size(); ++i) result->marker_residuals_mm.push_back((T * scan[i] - tube[i]).norm());
+  result->marker_rms_mm = rms(result->marker_residuals_mm);
+  result->marker_max_mm = *std::max_element(result->marker_residuals_mm.begin(), result->marker_residuals_mm.end());
+}
+
+// The fitted axis seen in the markers' frame: its angle to z and its distance from z at height z_mean.
+void cross_check(const Cylinder& c, const Eigen::Isometry3d& T, double z_mean, TubeReferenceResult* result) {
+  const Eigen::Vector3d direction = T.linear() * c.axis_direction;
+  const Eigen::Vector3d point = T * c.axis_point;
+  result->axis_disagreement_deg = std::acos(std::min(1.0, std::abs(direction.z()))) * 180.0 / 3.141592653589793;
+  if (std::abs(direction.z()) < 1e-9) return;
+  const Eigen::Vector3d at = point + (z_mean - point.z()) / direction.z() * direction;
+  result->axis_offset_mm = at.head<2>().norm();
+}
+
+std::string residual_text(const TubeReferenceResult& r, double tolerance_mm) {
+  std::ostringstream text;
+  text.precision(3);
+  text << "marker residuals";
+  for (const double d : r.marker_residuals_mm) text << ' ' << d;
+  text << " mm (RMS " << r.marker_rms_mm << ", max " << r.marker_max_mm << ", tolerance " << tolerance_mm << " mm)";
+  return text.str();
+}
+
+}  // namespace
+
 TubeReferenceResult tube_reference(const std::vector<Eigen::Vector3d>& points,
                                    const std::vector<Eigen::Vector3d>& normals,
                                    const std::vector<Eigen::Vector3d>& markers_scan,
@@ -85,6 +132,28 @@ TubeReferenceResult tube_reference(const std::vector<Eigen::Vector3d>& points,
                 std::to_string(markers_scan.size()) + " and " + std::to_string(markers_tube.size()) + ")");
   }
   TubeReferenceResult result;
+  const bool six_dof = !markers_scan.empty() && spans_a_plane(markers_scan, options.collinear_ratio) &&
+                       spans_a_plane(markers_tube, options.collinear_ratio);
+  if (six_dof) {
+    const HornResult horn = horn_transform(markers_scan, markers_tube);
+    if (horn.well_posed) {
+      result.T_tube_scan = horn.T_ref_scan;
+      result.method = "markers";
+      result.free_about_axis = false;
+      set_residuals(result.T_tube_scan, markers_scan, markers_tube, &result);
+      result.fit = fit_cylinder(points, normals, options.fit);
+      if (result.fit.ok) {
+        double z_mean = 0.0;
+        for (const Eigen::Vector3d& m : markers_tube) z_mean += m.z();
+        cross_check(result.fit.cylinder, result.T_tube_scan, z_mean / static_cast<double>(markers_tube.size()),
+                    &result);
+      }
+      result.ok = result.marker_max_mm <= options.max_marker_residual_mm;
+      result.termination = (result.ok ? "ok: " : "a marker is farther than the tolerance from its known position: ") +
+                           residual_text(result, options.max_marker_residual_mm);
+      return result;
+    }
+  }
   result.fit = fit_cylinder(points, normals, options.fit);
   if (!result.fit.ok) {
     result.termination = "cylinder fit: " + result.fit.termination;
@@ -103,23 +172,24 @@ TubeReferenceResult tube_reference(const std::vector<Eigen::Vector3d>& points,
     result.termination = "ok (no markers: rotation about the axis and shift along it are free)";
     return result;
   }
-  // Both axis signs; keep the one the markers agree with.
-  std::vector<double> best_residuals;
+  // Markers on one line: the axis fixes what they cannot. Both axis signs; keep the one the markers agree with.
+  double best = std::numeric_limits<double>::infinity();
   for (const double sign : {1.0, -1.0}) {
     std::vector<double> residuals;
     const Eigen::Isometry3d T =
         tube_frame_from_markers(c.axis_point, sign * c.axis_direction, markers_scan, markers_tube, &residuals);
-    if (best_residuals.empty() || rms(residuals) < rms(best_residuals)) {
-      best_residuals = residuals;
+    if (rms(residuals) < best) {
+      best = rms(residuals);
       result.T_tube_scan = T;
     }
   }
+  result.method = "axis + markers";
   result.free_about_axis = false;
-  result.marker_residuals_mm = best_residuals;
-  result.marker_rms_mm = rms(best_residuals);
-  result.marker_max_mm = *std::max_element(best_residuals.begin(), best_residuals.end());
+  set_residuals(result.T_tube_scan, markers_scan, markers_tube, &result);
   result.ok = result.marker_max_mm <= options.max_marker_residual_mm;
-  result.termination = result.ok ? "ok" : "a marker is farther than the tolerance from its known position";
+  result.termination = (result.ok ? "ok (markers on one line, the axis from the cylinder fit): "
+                                  : "a marker is farther than the tolerance from its known position: ") +
+                       residual_text(result, options.max_marker_residual_mm);
   return result;
 }
 

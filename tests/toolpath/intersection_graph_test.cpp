@@ -1,4 +1,4 @@
-// Welding by name and the conditions (1a)-(1f) on hand-made segment soups: each failure names its condition.
+// Welding by name, the paper's conditions (1a), (1d), (1i) and the project's [intersect], [one-curve] on hand-made segment soups: each failure names its condition.
 
 #include "conform/toolpath/intersection_graph.h"
 
@@ -42,53 +42,74 @@ TEST(IntersectionGraph, ARingWeldsIntoOneClosedCurve) {
   EXPECT_EQ(count_components(graph), 1);
 }
 
-TEST(IntersectionGraph, EmptyIsConditionA) {
+TEST(IntersectionGraph, EmptyIsIntersect) {
   const CurveCheck check = check_intersection_graph(weld_segments({}));
-  EXPECT_EQ(check.condition, "1a");
+  EXPECT_EQ(check.condition, "intersect");
+  EXPECT_EQ(check.message.rfind("[intersect]", 0), 0u) << check.message;
   EXPECT_NE(check.message.find("do not intersect"), std::string::npos) << check.message;
 }
 
-TEST(IntersectionGraph, DuplicateEdgeIsConditionC) {
+TEST(IntersectionGraph, DuplicateEdgeIsConditionI) {
   auto segments = ring(8);
   segments.push_back(segments[3]);
-  EXPECT_EQ(check_intersection_graph(weld_segments(segments)).condition, "1c");
+  EXPECT_EQ(check_intersection_graph(weld_segments(segments)).condition, "1i");
 }
 
-TEST(IntersectionGraph, OpenCurveIsConditionDAndNamesWhere) {
+TEST(IntersectionGraph, OpenCurveIsConditionAAndNamesWhere) {
   auto segments = ring(8);
   segments.erase(segments.begin() + 2);  // the ends at azimuth 90 and 135 deg
   const CurveCheck check = check_intersection_graph(weld_segments(segments));
-  EXPECT_EQ(check.condition, "1d");
+  EXPECT_EQ(check.condition, "1a");
+  EXPECT_EQ(check.message.rfind("(1a)", 0), 0u) << check.message;
   EXPECT_NE(check.message.find("azimuth"), std::string::npos) << check.message;
   const double deg = check.azimuth_rad * 180.0 / kPi;
   EXPECT_TRUE(std::abs(deg - 90.0) < 1e-9 || std::abs(deg - 135.0) < 1e-9) << deg;
 }
 
-TEST(IntersectionGraph, BranchIsConditionE) {
+TEST(IntersectionGraph, BranchIsConditionA) {
   auto segments = ring(8);
   IntersectionSegment spur;
   spur.ends[0] = crossing(0, 8);
   spur.ends[1] = crossing(4, 8);
   segments.push_back(spur);
   const CurveCheck check = check_intersection_graph(weld_segments(segments));
-  EXPECT_EQ(check.condition, "1e");
+  EXPECT_EQ(check.condition, "1a");
   EXPECT_NE(check.message.find("3 edges meet"), std::string::npos) << check.message;
 }
 
-TEST(IntersectionGraph, TwoCurvesAreConditionFAndTheSecondIsLocated) {
+TEST(IntersectionGraph, TwoCurvesAreOneCurveFailureAndTheSecondIsLocated) {
   auto segments = ring(8, 0);
   const auto second = ring(6, 1);
   segments.insert(segments.end(), second.begin(), second.end());
   const CurveCheck check = check_intersection_graph(weld_segments(segments));
-  EXPECT_EQ(check.condition, "1f");
+  EXPECT_EQ(check.condition, "one-curve");
   EXPECT_NE(check.message.find("2 separate"), std::string::npos) << check.message;
   EXPECT_EQ(check.where.z(), 5.0);  // a point of the second ring
 }
 
-TEST(IntersectionGraph, DegenerateEdgeIsConditionB) {
+TEST(IntersectionGraph, DegenerateEdgeIsConditionD) {
   auto segments = ring(8);
   segments[0].ends[1] = segments[0].ends[0];
-  EXPECT_EQ(check_intersection_graph(weld_segments(segments)).condition, "1b");
+  EXPECT_EQ(check_intersection_graph(weld_segments(segments)).condition, "1d");
+}
+
+// A small loop beside the main one (a noise island) is dropped and reported; one of similar size still fails.
+TEST(IntersectionGraph, IslandsFarShorterThanTheCurveAreDroppedSimilarLoopsFail) {
+  auto segments = ring(8, 0);
+  const auto second = ring(6, 1);
+  segments.insert(segments.end(), second.begin(), second.end());
+  const IntersectionGraph graph = weld_segments(segments);
+  // Perimeters 61.2 mm (8 sides on r = 10) and 60.0 mm (6 sides): a ratio of 0.98.
+  const MainCurve strict = select_main_curve(graph, 0.5);
+  EXPECT_EQ(strict.check.condition, "one-curve");
+  const MainCurve lenient = select_main_curve(graph, 0.99);
+  ASSERT_TRUE(lenient.check.ok) << lenient.check.message;
+  EXPECT_EQ(lenient.islands, 1u);
+  EXPECT_EQ(lenient.island_vertices, 6u);
+  EXPECT_EQ(lenient.graph.vertices.size(), 8u);
+  EXPECT_EQ(lenient.graph.edges.size(), 8u);
+  EXPECT_GT(lenient.main_length_mm, lenient.longest_island_mm);
+  EXPECT_TRUE(check_intersection_graph(lenient.graph).ok);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <limits>
 
 #include "conform/core/error.h"
 #include "conform/fitting/bspline_fit.h"
@@ -22,36 +23,33 @@ double azimuth_0_2pi(const Eigen::Vector3d& p) {
   return a < 0.0 ? a + kTwoPi : a;
 }
 
-// Keeps the points whose azimuth advances; fails (1h) on a step back farther than the tolerance, (1i) when the turn
-// is not exactly one. `points` must start at the smallest azimuth.
+// Unwraps the azimuth along `points` (one positive turn, starting at the smallest azimuth): keeps the points that
+// advance it, drops those behind the azimuth reached so far (or past the start's, one turn later) by at most the
+// tolerance, fails [azimuth] farther behind.
 AzimuthOrder unwrap(const std::vector<Eigen::Vector3d>& points, double tolerance_mm) {
   AzimuthOrder order;
   order.points.push_back(points[0]);
   order.azimuth_rad.push_back(azimuth_0_2pi(points[0]));
+  const double end = order.azimuth_rad.front() + kTwoPi;
+  double walked = order.azimuth_rad.front();
   for (std::size_t i = 1; i < points.size(); ++i) {
-    const double step = turn(order.points.back(), points[i]);
-    if (step > 0.0) {
+    walked += turn(points[i - 1], points[i]);
+    if (walked > order.azimuth_rad.back() && walked < end) {
       order.points.push_back(points[i]);
-      order.azimuth_rad.push_back(order.azimuth_rad.back() + step);
+      order.azimuth_rad.push_back(walked);
       continue;
     }
-    const double back_mm = -step * points[i].head<2>().norm();
+    const double behind = walked < end ? order.azimuth_rad.back() - walked : walked - end;
+    const double back_mm = behind * points[i].head<2>().norm();
     if (back_mm > tolerance_mm) {
       std::ostringstream what;
-      what << "the curve is not parameterisable by azimuth: it runs back " << back_mm << " mm around the stub axis";
-      order.check = curve_failure("1h", what.str(), points[i]);
+      what << "the curve is not parameterisable by azimuth: it runs back " << back_mm
+           << " mm around the stub axis (tolerance " << tolerance_mm << " mm)";
+      order.check = curve_failure("azimuth", what.str(), points[i]);
       return order;
     }
+    order.max_backtrack_mm = std::max(order.max_backtrack_mm, back_mm);
     ++order.dropped;
-  }
-  const double total =
-      order.azimuth_rad.back() + turn(order.points.back(), order.points.front()) - order.azimuth_rad.front();
-  if (std::abs(total - kTwoPi) > 1e-6) {
-    std::ostringstream what;
-    what << "the curve turns " << total * 180.0 / kPi
-         << " deg about the stub axis, not once around it (its projection on the stub x-y plane does not enclose "
-            "the axis)";
-    order.check = curve_failure("1i", what.str(), points[0]);
   }
   return order;
 }
@@ -92,6 +90,76 @@ AzimuthOrder smooth(const AzimuthOrder& order, double smoothing_mm2, double* rms
   return unwrap(samples, 0.0);
 }
 
+// The vertices in the order of the graph's cycle, from vertex 0, coincident neighbours merged (counted).
+std::vector<Eigen::Vector3d> walk_cycle(const IntersectionGraph& graph, std::size_t* merged) {
+  const std::size_t n = graph.vertices.size();
+  std::vector<std::vector<std::int32_t>> neighbours(n);
+  for (const auto& e : graph.edges) {
+    neighbours[static_cast<std::size_t>(e[0])].push_back(e[1]);
+    neighbours[static_cast<std::size_t>(e[1])].push_back(e[0]);
+  }
+  std::vector<Eigen::Vector3d> walk;
+  if (n == 0 || neighbours[0].size() != 2) return walk;
+  walk.push_back(graph.vertices[0]);
+  std::int32_t previous = 0;
+  std::int32_t next = neighbours[0][0];
+  while (next != 0 && walk.size() <= n) {
+    const Eigen::Vector3d& p = graph.vertices[static_cast<std::size_t>(next)];
+    if (p == walk.back()) {
+      ++*merged;
+    } else {
+      walk.push_back(p);
+    }
+    const auto& around = neighbours[static_cast<std::size_t>(next)];
+    const std::int32_t after = around[0] == previous ? around[1] : around[0];
+    previous = next;
+    next = after;
+  }
+  while (walk.size() > 1 && walk.back() == walk.front()) {
+    walk.pop_back();
+    ++*merged;
+  }
+  return walk;
+}
+
+// (1h): no two vertices of the cycle at the same coordinates.
+CurveCheck check_unique(const std::vector<Eigen::Vector3d>& cycle) {
+  std::vector<std::size_t> index(cycle.size());
+  for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
+  const auto less = [&](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(cycle[a].data(), cycle[a].data() + 3, cycle[b].data(), cycle[b].data() + 3);
+  };
+  std::sort(index.begin(), index.end(), less);
+  for (std::size_t i = 1; i < index.size(); ++i) {
+    if (cycle[index[i]] == cycle[index[i - 1]]) {
+      return curve_failure("1h", "two vertices of the curve coincide (it touches itself)", cycle[index[i]]);
+    }
+  }
+  return {};
+}
+
+// A closed smoothing cubic B-spline over the cycle, parameterised by chord length, sampled densely.
+std::vector<Eigen::Vector3d> smooth_cycle(const std::vector<Eigen::Vector3d>& cycle, double smoothing_mm2,
+                                          double* rms_mm) {
+  BSplineFitOptions fit_options;
+  fit_options.closed = true;
+  fit_options.parameters.push_back(0.0);
+  for (std::size_t i = 1; i <= cycle.size(); ++i) {
+    fit_options.parameters.push_back(fit_options.parameters.back() +
+                                     (cycle[i % cycle.size()] - cycle[i - 1]).norm());
+  }
+  fit_options.smoothing_mm2 = smoothing_mm2;
+  const BSplineFit fit = fit_bspline_curve(cycle, fit_options);
+  *rms_mm = fit.rms_mm;
+  const double length = fit_options.parameters.back();
+  const std::size_t dense = std::max<std::size_t>(8 * cycle.size(), 3600);
+  std::vector<Eigen::Vector3d> samples(dense);
+  for (std::size_t k = 0; k < dense; ++k) {
+    samples[k] = fit.curve.position(length * static_cast<double>(k) / static_cast<double>(dense));
+  }
+  return samples;
+}
+
 }  // namespace
 
 bool PathSamplingOptions::IsValid(std::string* error) const {
@@ -110,49 +178,68 @@ bool PathSamplingOptions::IsValid(std::string* error) const {
   return false;
 }
 
+bool AzimuthOrderOptions::IsValid(std::string* error) const {
+  std::ostringstream why;
+  if (!(std::isfinite(backtrack_tolerance_mm) && backtrack_tolerance_mm >= 0.0)) {
+    why << "backtrack tolerance " << backtrack_tolerance_mm << " mm must be >= 0";
+  } else if (!std::isfinite(smoothing_mm2)) {
+    why << "smoothing " << smoothing_mm2 << " mm^2 must be finite (< 0: none)";
+  }
+  if (why.tellp() == 0) return true;
+  if (error != nullptr) *error = why.str();
+  return false;
+}
+
 AzimuthOrder order_by_azimuth(const IntersectionGraph& graph, double backtrack_tolerance_mm) {
-  const std::size_t n = graph.vertices.size();
-  std::vector<std::vector<std::int32_t>> neighbours(n);
-  for (const auto& e : graph.edges) {
-    neighbours[static_cast<std::size_t>(e[0])].push_back(e[1]);
-    neighbours[static_cast<std::size_t>(e[1])].push_back(e[0]);
+  AzimuthOrderOptions options;
+  options.backtrack_tolerance_mm = backtrack_tolerance_mm;
+  return order_by_azimuth(graph, options);
+}
+
+AzimuthOrder order_by_azimuth(const IntersectionGraph& graph, const AzimuthOrderOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("azimuth order: " + why);
+  std::size_t merged = 0;
+  std::vector<Eigen::Vector3d> cycle = walk_cycle(graph, &merged);
+  AzimuthOrder failure;
+  if (cycle.size() < 3) {
+    failure.check = curve_failure("1a", "the intersection is not a closed curve: fewer than 3 distinct vertices",
+                                  cycle.empty() ? Eigen::Vector3d::Zero() : cycle.front());
+    return failure;
   }
-  std::size_t start = 0;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (graph.vertices[v].head<2>().norm() == 0.0) {
-      AzimuthOrder order;
-      order.check = curve_failure("1g", "a vertex lies on the stub axis (no azimuth)", graph.vertices[v]);
-      return order;
+  failure.check = check_unique(cycle);
+  if (!failure.check.ok) return failure;
+  bool smoothed = false;
+  double smoothing_rms = 0.0;
+  if (options.smoothing_mm2 >= 0.0) {
+    cycle = smooth_cycle(cycle, options.smoothing_mm2, &smoothing_rms);
+    smoothed = true;
+  }
+  for (const Eigen::Vector3d& p : cycle) {
+    if (p.head<2>().norm() == 0.0) {
+      failure.check = curve_failure("axis", "a vertex lies on the stub axis (no azimuth)", p);
+      return failure;
     }
-    if (azimuth_0_2pi(graph.vertices[v]) < azimuth_0_2pi(graph.vertices[start])) start = v;
   }
-  // Algorithm 1: the direction is the neighbour v' with sgn(z . (v x v')) > 0. Neighbours at v's own azimuth
-  // (coincident crossings where a vertex lies on the other mesh) decide nothing: look further along.
-  const Eigen::Vector3d& v = graph.vertices[start];
-  const auto first_turn = [&](std::int32_t towards) {
-    auto before = static_cast<std::int32_t>(start);
-    for (std::size_t steps = 0; steps < n && towards != static_cast<std::int32_t>(start); ++steps) {
-      const double turn_z = cross_z(v, graph.vertices[static_cast<std::size_t>(towards)]);
-      if (turn_z != 0.0) return turn_z;
-      const auto& around = neighbours[static_cast<std::size_t>(towards)];
-      const std::int32_t after = around[0] == before ? around[1] : around[0];
-      before = towards;
-      towards = after;
-    }
-    return 0.0;
-  };
-  std::int32_t next = neighbours[start][0];
-  if (first_turn(next) < 0.0) next = neighbours[start][1];
-  std::vector<Eigen::Vector3d> walk{v};
-  auto previous = static_cast<std::int32_t>(start);
-  while (next != static_cast<std::int32_t>(start) && walk.size() <= n) {
-    walk.push_back(graph.vertices[static_cast<std::size_t>(next)]);
-    const auto& around = neighbours[static_cast<std::size_t>(next)];
-    const std::int32_t after = around[0] == previous ? around[1] : around[0];
-    previous = next;
-    next = after;
+  double winding = 0.0;
+  for (std::size_t i = 0; i < cycle.size(); ++i) winding += turn(cycle[i], cycle[(i + 1) % cycle.size()]);
+  if (std::abs(std::abs(winding) - kTwoPi) > 1e-6) {
+    std::ostringstream what;
+    what << "the curve turns " << winding * 180.0 / kPi
+         << " deg about the stub axis, not once around it (its projection on the stub x-y plane does not enclose "
+            "the axis)";
+    failure.check = curve_failure("jordan", what.str(), cycle.front());
+    return failure;
   }
-  return unwrap(walk, backtrack_tolerance_mm);
+  if (winding < 0.0) std::reverse(cycle.begin(), cycle.end());
+  const auto first = std::min_element(cycle.begin(), cycle.end(),
+                                      [](const auto& x, const auto& y) { return azimuth_0_2pi(x) < azimuth_0_2pi(y); });
+  std::rotate(cycle.begin(), first, cycle.end());
+  AzimuthOrder order = unwrap(cycle, options.backtrack_tolerance_mm);
+  order.merged = merged;
+  order.smoothed = smoothed;
+  order.smoothing_rms_mm = smoothing_rms;
+  return order;
 }
 
 SampledPath sample_path(const AzimuthOrder& input, const PathSamplingOptions& options) {

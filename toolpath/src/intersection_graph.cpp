@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <sstream>
 #include <utility>
 
 namespace conform {
@@ -58,11 +59,15 @@ CurveCheck curve_failure(const std::string& condition, const std::string& what, 
   char text[160];
   std::snprintf(text, sizeof text, " at azimuth %.2f deg, (%.3f, %.3f, %.3f) mm", azimuth * 180.0 / kPi, where.x(),
                 where.y(), where.z());
-  check.message = "(" + condition + ") " + what + text;
+  const bool paper = condition.size() == 2 && condition[0] == '1';
+  check.message = (paper ? "(" + condition + ") " : "[" + condition + "] ") + what + text;
   return check;
 }
 
-int count_components(const IntersectionGraph& graph) {
+namespace {
+
+// Component label of every vertex (the smallest vertex index in it).
+std::vector<std::int32_t> component_labels(const IntersectionGraph& graph) {
   std::vector<std::int32_t> parent(graph.vertices.size());
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](std::int32_t v) {
@@ -72,70 +77,114 @@ int count_components(const IntersectionGraph& graph) {
     }
     return v;
   };
-  int components = static_cast<int>(graph.vertices.size());
   for (const auto& e : graph.edges) {
     const std::int32_t a = find(e[0]);
     const std::int32_t b = find(e[1]);
-    if (a == b) continue;
-    parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    --components;
+    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
   }
-  return components;
+  std::vector<std::int32_t> label(graph.vertices.size());
+  for (std::size_t v = 0; v < label.size(); ++v) label[v] = find(static_cast<std::int32_t>(v));
+  return label;
 }
 
-CurveCheck check_intersection_graph(const IntersectionGraph& graph) {
+// [intersect], (1d), (1i), (1a): the local conditions.
+CurveCheck check_local(const IntersectionGraph& graph) {
   if (graph.vertices.empty()) {
-    CurveCheck check = curve_failure("1a", "the meshes do not intersect", Eigen::Vector3d::Zero());
-    check.message = "(1a) the meshes do not intersect: no triangle of the leg crosses a triangle of the stub";
+    CurveCheck check = curve_failure("intersect", "the meshes do not intersect", Eigen::Vector3d::Zero());
+    check.message = "[intersect] the meshes do not intersect: no triangle of the leg crosses a triangle of the stub";
     return check;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> sorted;
   for (const auto& e : graph.edges) {
     if (e[0] == e[1]) {
-      return curve_failure("1b", "a degenerate edge (both ends one vertex)", graph.vertices[std::size_t(e[0])]);
+      return curve_failure("1d", "a degenerate edge (both ends one vertex)", graph.vertices[std::size_t(e[0])]);
     }
     sorted.emplace_back(std::min(e[0], e[1]), std::max(e[0], e[1]));
   }
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 1; i < sorted.size(); ++i) {
     if (sorted[i] == sorted[i - 1]) {
-      return curve_failure("1c", "two edges join the same two vertices", graph.vertices[std::size_t(sorted[i].first)]);
+      return curve_failure("1i", "two edges join the same two vertices", graph.vertices[std::size_t(sorted[i].first)]);
     }
   }
   const auto neighbours = adjacency(graph);
   for (std::size_t v = 0; v < neighbours.size(); ++v) {
     if (neighbours[v].size() < 2) {
-      return curve_failure("1d", "the intersection is not closed: an open end (a mesh border or hole crosses it)",
+      return curve_failure("1a", "the intersection is not a closed curve: an open end (a mesh border or hole crosses it)",
                            graph.vertices[v]);
     }
   }
   for (std::size_t v = 0; v < neighbours.size(); ++v) {
     if (neighbours[v].size() > 2) {
-      return curve_failure("1e", "the intersection branches: " + std::to_string(neighbours[v].size()) + " edges meet",
+      return curve_failure("1a", "the intersection is not a simple closed curve: it branches, " +
+                                     std::to_string(neighbours[v].size()) + " edges meet",
                            graph.vertices[v]);
     }
   }
-  const int components = count_components(graph);
-  if (components != 1) {
-    // Name a point of the second curve: the first vertex not connected to vertex 0.
-    std::vector<char> seen(graph.vertices.size(), 0);
-    std::vector<std::int32_t> stack{0};
-    seen[0] = 1;
-    while (!stack.empty()) {
-      const std::int32_t v = stack.back();
-      stack.pop_back();
-      for (const std::int32_t w : neighbours[static_cast<std::size_t>(v)]) {
-        if (!seen[static_cast<std::size_t>(w)]) {
-          seen[static_cast<std::size_t>(w)] = 1;
-          stack.push_back(w);
-        }
-      }
-    }
-    const auto other = static_cast<std::size_t>(std::find(seen.begin(), seen.end(), 0) - seen.begin());
-    return curve_failure("1f", std::to_string(components) + " separate intersection curves, not one; another one",
-                         graph.vertices[other]);
-  }
   return {};
+}
+
+}  // namespace
+
+int count_components(const IntersectionGraph& graph) {
+  const std::vector<std::int32_t> label = component_labels(graph);
+  int components = 0;
+  for (std::size_t v = 0; v < label.size(); ++v) components += label[v] == static_cast<std::int32_t>(v) ? 1 : 0;
+  return components;
+}
+
+CurveCheck check_intersection_graph(const IntersectionGraph& graph) {
+  const MainCurve main = select_main_curve(graph, 0.0);
+  return main.check;
+}
+
+MainCurve select_main_curve(const IntersectionGraph& graph, double max_island_ratio) {
+  MainCurve main;
+  main.check = check_local(graph);
+  if (!main.check.ok) return main;
+  const std::vector<std::int32_t> label = component_labels(graph);
+  std::vector<double> length(graph.vertices.size(), 0.0);
+  for (const auto& e : graph.edges) {
+    length[static_cast<std::size_t>(label[static_cast<std::size_t>(e[0])])] +=
+        (graph.vertices[static_cast<std::size_t>(e[0])] - graph.vertices[static_cast<std::size_t>(e[1])]).norm();
+  }
+  std::vector<std::int32_t> roots;
+  for (std::size_t v = 0; v < label.size(); ++v) {
+    if (label[v] == static_cast<std::int32_t>(v)) roots.push_back(static_cast<std::int32_t>(v));
+  }
+  // Longest first; ties by the smallest vertex index (deterministic).
+  std::stable_sort(roots.begin(), roots.end(), [&](std::int32_t a, std::int32_t b) {
+    return length[static_cast<std::size_t>(a)] > length[static_cast<std::size_t>(b)];
+  });
+  const std::int32_t keep = roots.front();
+  main.main_length_mm = length[static_cast<std::size_t>(keep)];
+  if (roots.size() > 1) {
+    const double second = length[static_cast<std::size_t>(roots[1])];
+    if (second >= max_island_ratio * main.main_length_mm) {
+      std::ostringstream what;
+      what << roots.size() << " separate intersection curves, not one (the longest " << main.main_length_mm
+           << " mm, the next " << second << " mm); another one";
+      main.check = curve_failure("one-curve", what.str(), graph.vertices[static_cast<std::size_t>(roots[1])]);
+      return main;
+    }
+    main.islands = roots.size() - 1;
+    main.longest_island_mm = second;
+  }
+  std::vector<std::int32_t> renumber(graph.vertices.size(), -1);
+  for (std::size_t v = 0; v < graph.vertices.size(); ++v) {
+    if (label[v] != keep) {
+      ++main.island_vertices;
+      continue;
+    }
+    renumber[v] = static_cast<std::int32_t>(main.graph.vertices.size());
+    main.graph.vertices.push_back(graph.vertices[v]);
+    main.graph.crossings.push_back(graph.crossings[v]);
+  }
+  for (const auto& e : graph.edges) {
+    const std::int32_t a = renumber[static_cast<std::size_t>(e[0])];
+    if (a >= 0) main.graph.edges.push_back({a, renumber[static_cast<std::size_t>(e[1])]});
+  }
+  return main;
 }
 
 }  // namespace conform

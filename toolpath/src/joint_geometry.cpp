@@ -94,7 +94,8 @@ PathFrame path_frame(double phi_rad, const Eigen::Vector3d& p, const Eigen::Vect
 
 std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
                                       const Mesh& stub_S, const TubeAxis& stub_axis, const Mesh& leg_S,
-                                      const TubeAxis& leg_axis, const JointGeometryOptions& options) {
+                                      const TubeAxis& leg_axis, const JointGeometryOptions& options,
+                                      std::size_t* refined) {
   std::string why;
   if (!options.IsValid(&why)) throw Error("joint geometry: " + why);
   const auto k = static_cast<std::size_t>(options.k_normals);
@@ -110,7 +111,13 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
       const bool quadric = options.fit == NormalFit::kQuadric;
       const LocalQuadric stub = fit_local_quadric(neighbours(stub_tree, stub_S, p, options.k_refine), p, quadric);
       const LocalQuadric leg = fit_local_quadric(neighbours(leg_tree, leg_S, p, options.k_refine), p, quadric);
-      if (!refine_seam_point(stub, leg, options.max_refine_mm, &p)) p = points[i];
+      // The fits hold within their patches: a move up to half the smaller patch's radius is trusted.
+      const double limit = std::max(options.max_refine_mm, 0.5 * std::min(stub.scale, leg.scale));
+      if (!refine_seam_point(stub, leg, limit, &p)) {
+        p = points[i];
+      } else if (refined != nullptr) {
+        ++*refined;
+      }
     }
     const Eigen::Vector3d n_s =
         pca_normal(neighbours(stub_tree, stub_S, p, options.k_normals), p, stub_axis, options.fit);

@@ -1,14 +1,16 @@
 #pragma once
-// A scanned tube's own frame (z along its axis, as `generate tube` and the tube-joint frames L and S use), from the
-// cylinder fit (fitting/cylinder.h: axis and radius) plus >= 3 markers whose positions are known in the tube frame
-// (HandySCAN targets, punch marks), their order giving the correspondence.
+// A scanned tube's own frame (z along its axis, as `generate tube` and the tube-joint frames L and S use), from
+// >= 3 markers whose positions are known in the tube frame (HandySCAN targets, punch marks; their order gives the
+// correspondence), with the cylinder fit (fitting/cylinder.h) as a prior.
 //
-// The axis fixes 4 of the 6 degrees of freedom (the axis direction and its position across it). The markers fix the
-// other two in closed form: the rotation psi about the axis (2D Procrustes of the markers' components across the
-// axis) and the shift h along it (the mean of their along-axis differences); both axis signs are tried and the one
-// with the smaller marker residual kept. Without markers, rotation about the axis and shift along it are free: the
-// result then puts azimuth 0 towards an arbitrary direction and z = 0 at the foot of the points' centroid, and says
-// so (`free_about_axis`).
+// Markers that span a plane fix all 6 degrees of freedom: the frame is their least-squares rigid fit (Horn's closed
+// form, horn.h). The cylinder fit is then only a cross-check: on an oval or peaked tube, a fit to a patch can put the
+// axis several mm off (a 1 % oval leg, 68 deg patch: 17.8 mm), and constraining the frame to it would drag the
+// markers off their known places. Its disagreement with the markers' frame is reported. Only when the markers leave
+// a rotation free (all nearly on one line) does the fit's axis fix the other 4 degrees of freedom and the markers the
+// rotation about it and the shift along it (2D Procrustes, closed form); both axis signs are tried. Without markers,
+// rotation about the axis and shift along it are free: azimuth 0 then points in an arbitrary direction and z = 0 is
+// the foot of the points' centroid, and the result says so (`free_about_axis`).
 
 #include <string>
 #include <vector>
@@ -23,6 +25,9 @@ namespace conform {
 struct TubeReferenceOptions {
   CylinderFitOptions fit;               // the axis fit (threshold, radius bounds, axis prior, seed ...)
   double max_marker_residual_mm = 2.0;  // a marker farther than this from its known position fails the result
+  // Markers whose second principal extent is below this fraction of their first are taken as one line: the rotation
+  // about it is then fixed by the cylinder fit.
+  double collinear_ratio = 0.02;
 
   bool IsValid(std::string* error) const;
 };
@@ -36,6 +41,11 @@ struct TubeReferenceResult {
   std::vector<double> marker_residuals_mm;  // |T_tube_scan * m_scan - m_tube| per marker
   double marker_rms_mm = 0.0;
   double marker_max_mm = 0.0;
+  std::string method = "axis";            // "markers" (6-DOF, Horn), "axis + markers" (collinear markers), "axis"
+  // The cylinder fit against the markers' frame ("markers" only; -1 when the fit failed): the angle between the
+  // fitted axis and z, deg, and the fitted axis's distance from the z axis at the markers' mean height, mm.
+  double axis_disagreement_deg = -1.0;
+  double axis_offset_mm = -1.0;
 };
 
 // Throws conform::Error when the options are invalid, the marker lists differ in length, there are 1 or 2 markers

@@ -16,15 +16,32 @@
 namespace conform {
 
 struct AzimuthOrder {
-  CurveCheck check;                     // ok, or the failed condition (1g)-(1i) and where
+  CurveCheck check;                     // ok, or the failed condition (1h), [axis], [azimuth], [jordan] and where
   std::vector<Eigen::Vector3d> points;  // one turn, the first at the smallest azimuth in [0, 2 pi)
   std::vector<double> azimuth_rad;      // unwrapped, strictly increasing, azimuth_rad[0] in [0, 2 pi)
-  std::size_t dropped = 0;              // vertices dropped as backtracking within the tolerance (or coincident)
+  std::size_t dropped = 0;              // vertices dropped as backtracking within the tolerance
+  std::size_t merged = 0;               // coincident neighbours merged (zero-length edges, (1h))
+  double max_backtrack_mm = 0.0;        // the largest backtrack let pass (arc on the stub), mm
+  bool smoothed = false;                // the cycle was smoothed before the azimuth test
+  double smoothing_rms_mm = 0.0;        // RMS distance of the cycle's vertices from the spline
 };
 
-// Algorithm 1: start at the vertex of smallest azimuth, walk the cycle in the direction of increasing azimuth
-// (sgn(z . (v x v')) > 0). A vertex behind its predecessor by at most `backtrack_tolerance_mm` (arc on the stub) is
-// dropped (noise on a facet); farther behind fails (1h). The graph must have passed check_intersection_graph.
+struct AzimuthOrderOptions {
+  // A vertex behind the azimuth reached so far by at most this (arc on the stub, mm) is dropped (scanner noise where
+  // the surfaces cross at a shallow angle); farther behind fails [azimuth].
+  double backtrack_tolerance_mm = 0.05;
+  // >= 0: the cycle is smoothed first (closed smoothing cubic B-spline over chord length, target sum of squared
+  // residuals in mm^2, fitting/bspline_fit.h) and the azimuth test runs on the smoothed curve; < 0: none.
+  double smoothing_mm2 = -1.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Algorithm 1, made robust: walk the graph's cycle from the vertex of smallest azimuth; the direction is the one in
+// which the curve winds positively about z (its winding number; [jordan] unless it is +-1); then unwrap the azimuth
+// along the walk, dropping vertices that run back within the tolerance. The graph must be one cycle (it has passed
+// select_main_curve / check_intersection_graph). Throws conform::Error for invalid options.
+AzimuthOrder order_by_azimuth(const IntersectionGraph& graph, const AzimuthOrderOptions& options);
 AzimuthOrder order_by_azimuth(const IntersectionGraph& graph, double backtrack_tolerance_mm = 0.05);
 
 enum class PathSpacing { kAzimuth, kArcLength };

@@ -5,6 +5,7 @@
 // t_l_out = n_l x t (Eq. 6). Everything in the stub frame S. "Outward" is away from each tube's axis, whichever way
 // the mesh's faces wind (the stub is scanned from inside).
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,9 @@ struct JointGeometryOptions {
   // nearest vertices of each mesh), within the half-plane of its azimuth (so phi is kept), by Newton's method. This
   // averages the scanner noise of k vertices instead of taking one facet's. 0: off (the paper's point).
   int k_refine = 40;
-  double max_refine_mm = 3.0;  // a refinement that would move a point farther is not applied
+  // A refinement that would move a point farther than this, or than half the radius of the smaller local patch
+  // (k_refine vertices; the fits hold within it), is not applied.
+  double max_refine_mm = 3.0;
   bool IsValid(std::string* error) const;
 };
 
@@ -63,9 +66,11 @@ PathFrame path_frame(double phi_rad, const Eigen::Vector3d& p, const Eigen::Vect
                      const Eigen::Vector3d& leg_normal);
 
 // The frames of every path point: normals by PCA of the k nearest vertices of the stub mesh and of the leg mesh
-// (both in S). Throws conform::Error when the options are invalid or a mesh has fewer than k vertices.
+// (both in S). *refined (if given): the points the refinement moved (k_refine > 0). Throws conform::Error when the
+// options are invalid or a mesh has fewer than k vertices.
 std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
                                       const Mesh& stub_S, const TubeAxis& stub_axis, const Mesh& leg_S,
-                                      const TubeAxis& leg_axis, const JointGeometryOptions& options);
+                                      const TubeAxis& leg_axis, const JointGeometryOptions& options,
+                                      std::size_t* refined = nullptr);
 
 }  // namespace conform
