@@ -67,7 +67,7 @@ class ProfileCommand : public Command {
     c.add_option("--noise", noise_mm_,
                  "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
     c.add_option("--out", out_,
-                 "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,normal_xyz,cut_xyz (circle centre i = -1)");
+                 "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 

@@ -163,9 +163,7 @@ std::vector<ProfileFeature> read_profile_features(const std::string& path) {
 }
 
 std::string profile_csv(const ProfileCompensationResult& result) {
-  CsvWriter csv({"id", "i", "tx_mm", "ty_mm", "x_mm", "y_mm", "z_mm", "normal_x", "normal_y", "normal_z", "cut_x",
-                 "cut_y", "cut_z"},
-                6);
+  CsvWriter csv({"id", "i", "tx_mm", "ty_mm", "x_mm", "y_mm", "z_mm", "nx", "ny", "nz", "dx", "dy", "dz"}, 6);
   const auto row = [&csv](const std::string& id, int i, const Eigen::Vector2d& designed, const Eigen::Vector3d& p,
                           const Eigen::Vector3d& normal, const Eigen::Vector3d& cut) {
     csv.cell(id).cell(i).cell(designed.x()).cell(designed.y()).cell(p.x()).cell(p.y()).cell(p.z());

@@ -52,8 +52,8 @@ double worst_centre_error(const std::string& out_csv, const std::string& truth_c
     for (std::size_t b = 1; b < truth.size(); ++b) {
       const std::vector<std::string> t = fields(truth[b]);
       if (t[0] != o[0] || t[1] != "-1") continue;
-      const double dx = std::stod(o[2]) - std::stod(t[4]), dy = std::stod(o[3]) - std::stod(t[5]),
-                   dz = std::stod(o[4]) - std::stod(t[6]);
+      const double dx = std::stod(o[4]) - std::stod(t[4]), dy = std::stod(o[5]) - std::stod(t[5]),
+                   dz = std::stod(o[6]) - std::stod(t[6]);
       worst = std::max(worst, std::sqrt(dx * dx + dy * dy + dz * dz));
     }
   }
@@ -76,7 +76,7 @@ TEST(ProfileCommand, CompensatesAGeneratedProfile) {
   ASSERT_EQ(j["features"].size(), 3u);
   EXPECT_EQ(j["features"][0]["id"], "H1");
   const std::string out = test::read_bytes(dir.file("out.csv"));
-  EXPECT_EQ(lines(out)[0], "id,i,x_mm,y_mm,z_mm");
+  EXPECT_EQ(lines(out)[0], "id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz");
   // 0.3 mm: the bound for the compensated hole centres.
   EXPECT_LT(worst_centre_error(out, test::read_bytes(dir.file("p.truth.csv"))), 0.3);
   // Circle outlines are closed: the last row of H1 repeats its first (i = 0).

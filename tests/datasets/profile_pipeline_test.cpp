@@ -55,7 +55,7 @@ TEST(ProfilePipeline, GeneratedFilesRoundTripThroughTheCompensation) {
   ASSERT_EQ(r.compensation.features.size(), 3u);  // H1, H2, M1
   EXPECT_EQ(r.compensation.features[2].type, ProfileFeatureType::kPolyline);
   const std::string csv = test::read_bytes(job.out_path);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "id,i,x_mm,y_mm,z_mm");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz");
   EXPECT_EQ(csv.substr(csv.find('\n') + 1, 6), "H1,-1,");  // the centre first
   EXPECT_EQ(csv, profile_csv(r.compensation));
   // Rerun: the same bytes.

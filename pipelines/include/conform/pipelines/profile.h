@@ -9,7 +9,7 @@
 //                 vertices of one feature (profile_features.h: point, circle, slot, polyline, polygon)
 //   features JSON {"features": [{"id": "H1", "type": "circle", "tx_mm": 100, "ty_mm": 1200, "radius_mm": 50},
 //                               {"id": "M1", "type": "polyline", "points_mm": [[185, 600], [185, 11400]]}, ...]}
-//   out CSV       id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,normal_x,normal_y,normal_z,cut_x,cut_y,cut_z: the designed point,
+//   out CSV       id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz: the designed point,
 //                 where to cut it, and the tool's frame there (the web's normal, the cut direction along the mapped
 //                 outline); the mapped centre of a circle or slot as i = -1, then its outline i = 0, 1, ...
 
