@@ -79,7 +79,8 @@ class ProfileCommand : public Command {
     options.out_path = out_;
     ProfileCompensationOptions& c = options.compensation;
     parse_profile_edge_model(model_, &c.edge.model);
-    if (!web_plane_ && second_edge_.empty()) c.web_normal = parse_web_normal(web_normal_);
+    const Eigen::Vector3d z = parse_web_normal(web_normal_);
+    if (second_edge_.empty() && !web_plane_ && z.normalized() != Eigen::Vector3d::UnitZ()) c.web_normal = z;
     c.fit_web_plane = web_plane_;
     c.web_width_mm = web_width_mm_;
     c.reversed = direction_ == "reverse";

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <vector>
 
 #include "conform/core/error.h"
 
@@ -82,11 +81,13 @@ struct Quadrature {
       double a, b, whole;
       int depth;
     };
-    std::vector<Interval> stack = {{a0, b0, whole0, 0}};
+    // Depth first: never more than max_depth + 1 (<= 61) intervals wait, so a fixed array serves (no allocation).
+    std::array<Interval, 64> stack;
+    std::size_t size = 0;
+    stack[size++] = {a0, b0, whole0, 0};
     double total = 0.0;
-    while (!stack.empty()) {
-      const Interval in = stack.back();
-      stack.pop_back();
+    while (size > 0) {
+      const Interval in = stack[--size];
       const double mid = 0.5 * (in.a + in.b);
       const double left = gauss(in.a, mid), right = gauss(mid, in.b);
       const double both = left + right;
@@ -97,8 +98,8 @@ struct Quadrature {
         total += both;
         continue;
       }
-      stack.push_back({mid, in.b, right, in.depth + 1});
-      stack.push_back({in.a, mid, left, in.depth + 1});
+      stack[size++] = {mid, in.b, right, in.depth + 1};
+      stack[size++] = {in.a, mid, left, in.depth + 1};
     }
     return total;
   }
