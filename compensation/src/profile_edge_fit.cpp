@@ -18,6 +18,13 @@ constexpr double kOutlierWeight = 1e-6;     // w of a rejected point: w^2 = 1e-1
 constexpr double kRayleighMedian = 1.1774;  // median of |r| for r gaussian in 2 components of sigma 1
 constexpr std::size_t kListedOutliers = 20;
 
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), middle, v.end());
+  return *middle;
+}
+
 // The points kept by the check, centred on their centroid, with their parameters u (mm along the main axis from the
 // first one: projection-based, so noise along the edge does not add up as it does in chord length).
 struct Prepared {
@@ -25,6 +32,7 @@ struct Prepared {
   std::vector<int> index;  // input index of each
   std::vector<double> u;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
   double u_end = 0.0;
 };
 
@@ -40,6 +48,7 @@ Prepared prepare(const std::vector<Eigen::Vector3d>& points, const ProfileEdgePo
     p.u.push_back(check.along_mm[k] - check.along_mm.front());
   }
   p.u_end = p.u.back();
+  p.axis = check.axis;
   return p;
 }
 
@@ -96,12 +105,6 @@ ModelFit fit_spline(const Prepared& p, const std::vector<char>& inlier, double s
   return out;
 }
 
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), middle, v.end());
-  return *middle;
-}
 
 ProfileEdgeResidual residual_of(const ModelFit& m, const Prepared& p, const std::vector<char>& inlier) {
   ProfileEdgeResidual out;
@@ -123,6 +126,56 @@ ProfileEdgeResidual residual_of(const ModelFit& m, const Prepared& p, const std:
   return out;
 }
 
+// A start that no least-squares fit gives: each point against the line through two robust local points, the
+// componentwise medians (u included) of kScreenGroup neighbours before it and of as many after it (both after or both
+// before it at the ends), across the axis only. A burst of bad readings, or a third of them, pulls a least-squares
+// curve towards itself so much that its residuals no longer tell them apart; medians of neighbours do not move, and
+// the line through two of them follows the edge's slope (a plain median of neighbours would not, with uneven gaps).
+constexpr std::size_t kScreenGroup = 5;
+
+struct Robust {
+  double u = 0.0;
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+
+Robust group_median(const Prepared& p, std::size_t lo, std::size_t hi, std::vector<double>* scratch) {
+  Robust out;
+  const auto median_in_place = [scratch]() {
+    const auto middle = scratch->begin() + static_cast<std::ptrdiff_t>(scratch->size() / 2);
+    std::nth_element(scratch->begin(), middle, scratch->end());
+    return *middle;
+  };
+  scratch->clear();
+  for (std::size_t j = lo; j < hi; ++j) scratch->push_back(p.u[j]);
+  out.u = median_in_place();
+  for (int d = 0; d < 3; ++d) {
+    scratch->clear();
+    for (std::size_t j = lo; j < hi; ++j) scratch->push_back(p.local[j][d]);
+    out.p[d] = median_in_place();
+  }
+  return out;
+}
+
+// Zero for every point of a scan too short for two groups on one side.
+std::vector<double> median_screen_residuals(const Prepared& p) {
+  const std::size_t n = p.local.size(), g = kScreenGroup;
+  std::vector<double> out(n, 0.0), scratch;
+  if (n < 2 * g + 1) return out;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t a_lo = i >= g ? i - g : 0, a_hi = i, b_lo = i + 1, b_hi = std::min(n, i + 1 + g);
+    if (i < 2) a_lo = i + 1, a_hi = i + 1 + g, b_lo = a_hi, b_hi = a_hi + g;             // the start: both after
+    if (i + 2 >= n) b_lo = i - g, b_hi = i, a_lo = i - 2 * g, a_hi = i - g;                // the end: both before
+    const Robust a = group_median(p, a_lo, a_hi, &scratch), b = group_median(p, b_lo, b_hi, &scratch);
+    const double span = b.u - a.u;
+    const Eigen::Vector3d m = std::abs(span) > 0.0 ? Eigen::Vector3d(a.p + (b.p - a.p) * ((p.u[i] - a.u) / span))
+                                                   : Eigen::Vector3d(0.5 * (a.p + b.p));
+    Eigen::Vector3d r = p.local[i] - m;
+    r -= r.dot(p.axis) * p.axis;
+    out[i] = r.norm();
+  }
+  return out;
+}
+
 struct Reweighted {
   ModelFit fit;
   std::vector<char> inlier;
@@ -133,9 +186,12 @@ struct Reweighted {
 // Iterative reweighting with weights 0 or 1: every pass fits the model to the current inliers and re-decides every
 // point from that curve (a point wrongly dropped next to a spike comes back once the spike no longer pulls).
 template <typename FitFunction>
-Reweighted reweight(const Prepared& p, double sigma, const ProfileEdgeFitOptions& o, FitFunction fit_model) {
+Reweighted reweight(const Prepared& p, const std::vector<double>& screen, double sigma, const ProfileEdgeFitOptions& o,
+                   FitFunction fit_model) {
   Reweighted r;
   r.inlier.assign(p.local.size(), 1);
+  const double screen_threshold = std::max(1.08 * o.outlier_threshold_sigma * sigma, o.min_outlier_mm);
+  for (std::size_t k = 0; k < screen.size(); ++k) r.inlier[k] = screen[k] <= screen_threshold ? 1 : 0;
   for (r.passes = 1; r.passes <= o.max_reweighting_passes; ++r.passes) {
     r.fit = fit_model(r.inlier);
     const double scale = std::max(sigma, median_of(r.fit.residual_mm) / kRayleighMedian);
@@ -228,9 +284,15 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
   if (!options.IsValid(&problem)) throw Error(source + ": invalid edge-fit options: " + problem);
   ProfileEdgeFit fit;
   fit.points = check_profile_edge_points(points, options.points, source, options.noise_mm);
-  fit.noise_mm = options.noise_mm > 0.0 ? options.noise_mm : fit.points.noise_mm;
   fit.duplicates_dropped = fit.points.duplicates;
   const Prepared p = prepare(points, fit.points);
+  // The median screen's residuals also give a sigma that many outliers cannot inflate (every third point a spike
+  // spoils every second difference); a screen residual is ~1.08 times a curve's (a median of 5 carries ~0.56 sigma).
+  const std::vector<double> screen = median_screen_residuals(p);
+  const double screen_sigma = median_of(screen) / (1.08 * kRayleighMedian);
+  fit.noise_mm = options.noise_mm > 0.0  ? options.noise_mm
+                 : screen_sigma > 0.0 ? std::min(fit.points.noise_mm, screen_sigma)
+                                      : fit.points.noise_mm;
   const double sigma = fit.noise_mm;
   const auto cubic = [&](const std::vector<char>& inlier) {
     return fit_cubic(p, inlier, options.cubic_length_segments);
@@ -238,7 +300,7 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
   Reweighted robust;
   try {
     if (options.model == ProfileEdgeModel::kCubic) {
-      robust = reweight(p, sigma, options, cubic);
+      robust = reweight(p, screen, sigma, options, cubic);
     } else {
       // Knots tied to the step and the noise; where the spline cannot reach the noise level (detail finer than the
       // knots), they are halved, at most twice and never below two steps.
@@ -248,7 +310,7 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
         const int m = options.spline_control_points > 0
                           ? options.spline_control_points
                           : control_points_for(p.u_end, fit.knot_spacing_mm, p.local.size());
-        robust = reweight(p, sigma, options, [&](const std::vector<char>& inlier) {
+        robust = reweight(p, screen, sigma, options, [&](const std::vector<char>& inlier) {
           return fit_spline(p, inlier, sigma, m, false);
         });
         const bool finer = !robust.fit.smoothing_met && options.spline_control_points == 0 &&

@@ -55,13 +55,20 @@ bool ProfileEdgePointsOptions::IsValid(std::string* error) const {
 
 double estimate_edge_noise_mm(const std::vector<Eigen::Vector3d>& points) {
   if (points.size() < 3) return 0.0;
-  std::vector<double> squared;
-  squared.reserve(points.size() - 2);
+  const Eigen::Vector3d axis = main_axis(points);
+  std::vector<double> scaled;
+  scaled.reserve(points.size() - 2);
   for (std::size_t i = 1; i + 1 < points.size(); ++i) {
-    squared.push_back((points[i - 1] - 2.0 * points[i] + points[i + 1]).squaredNorm());
+    const double h1 = (points[i] - points[i - 1]).dot(axis), h2 = (points[i + 1] - points[i]).dot(axis);
+    if (!(h1 > 0.0 && h2 > 0.0)) continue;  // out of order or repeated: no interpolation between them
+    // P_i against the chord of its neighbours at its own place along the axis: uneven steps (dropouts) cancel.
+    const double w = h1 / (h1 + h2);
+    Eigen::Vector3d d = points[i] - (points[i - 1] + w * (points[i + 1] - points[i - 1]));
+    d -= d.dot(axis) * axis;
+    scaled.push_back(d.squaredNorm() / (1.0 + w * w + (1.0 - w) * (1.0 - w)));
   }
-  constexpr double kChiSquare3Median = 2.365973884;
-  return std::sqrt(median(std::move(squared)) / (6.0 * kChiSquare3Median));
+  constexpr double kChiSquare2Median = 1.386294361;  // 2 ln 2
+  return std::sqrt(median(std::move(scaled)) / kChiSquare2Median);
 }
 
 namespace {
@@ -148,6 +155,11 @@ ProfileEdgePointsCheck check_profile_edge_points(const std::vector<Eigen::Vector
   check.along_mm.reserve(check.order.size());
   for (int index : check.order) check.along_mm.push_back(along[static_cast<std::size_t>(index)]);
   check.median_spacing_mm = median(std::move(spacing));
+  // The noise of the points kept, in their order along the axis (repeats would make it look smaller).
+  std::vector<Eigen::Vector3d> kept;
+  kept.reserve(check.order.size());
+  for (int index : check.order) kept.push_back(points[static_cast<std::size_t>(index)]);
+  check.noise_mm = estimate_edge_noise_mm(kept);
   return check;
 }
 

@@ -110,7 +110,7 @@ TEST(ProfileCommand, SplineAndSecondEdgeOptions) {
   EXPECT_LT(worst_centre_error(test::read_bytes(dir.file("out.csv")), test::read_bytes(dir.file("k.truth.csv"))), 0.3);
   // --model cubic is obeyed; --web-normal and --second-edge exclude each other.
   const auto cubic = conform_run({"profile", "--edge", edge, "--features", dir.file("k.features.csv"), "--model",
-                                  "cubic", "--web-normal", "0,0,2", "--json"});
+                                  "cubic", "--web-normal", "0.001,0,1", "--json"});
   ASSERT_EQ(cubic.exit_code, 0) << cubic.err;
   EXPECT_EQ(nlohmann::json::parse(cubic.out)["model"], "cubic");
   EXPECT_EQ(nlohmann::json::parse(cubic.out)["web"], "given");

@@ -116,21 +116,25 @@ std::vector<Eigen::Vector3d> bowed(double length, double step, double sigma, std
 TEST(ProfileEdge, DuplicatesAreDroppedAndCounted) {
   std::vector<Eigen::Vector3d> points = bowed(3000.0, 5.0, 0.1);
   const ProfileEdgeFit clean = fit_profile_edge(points, {});
-  for (std::size_t i : {10u, 200u, 201u}) points.insert(points.begin() + static_cast<std::ptrdiff_t>(i), points[i]);
+  for (std::size_t i : {10u, 200u, 201u}) {
+    const Eigen::Vector3d repeat = points[i];
+    points.insert(points.begin() + static_cast<std::ptrdiff_t>(i), repeat);
+  }
   const ProfileEdgeFit fit = fit_profile_edge(points, {});
   EXPECT_EQ(fit.duplicates_dropped, 3u);
   EXPECT_EQ(fit.outliers, 0u);
-  EXPECT_NEAR(fit.curve.length_mm(), clean.curve.length_mm(), 1e-9);
+  // The main axis is taken from every point, repeats included: it turns by ~1e-9 rad, the length moves by ~1e-5 mm.
+  EXPECT_NEAR(fit.curve.length_mm(), clean.curve.length_mm(), 1e-3);
 }
 
 TEST(ProfileEdge, DenseNoisyScanIsAcceptedAndNotStretched) {
-  // 0.24 mm steps with sigma 0.05: consecutive points often step back along the edge by noise. They are accepted,
-  // and the length is not inflated (chord length would add ~sigma^2 / step per step: +10 mm over 1 m).
-  const std::vector<Eigen::Vector3d> points = bowed(1000.0, 0.24, 0.05);
+  // 0.24 mm steps with sigma 0.1: consecutive points often step back along the edge by noise. They are accepted,
+  // and the length is not inflated (chord length adds ~2 sigma^2 / step per step: +300 mm over 1 m).
+  const std::vector<Eigen::Vector3d> points = bowed(1000.0, 0.24, 0.1);
   const ProfileEdgeFit fit = fit_profile_edge(points, {});
-  EXPECT_GT(fit.points.reordered, 10u);
+  EXPECT_GT(fit.points.reordered, 50u);
   const double truth = 1000.0 + 8.0 / 3.0 * 40.0 * 40.0 / 1000.0;  // arc of the parabola, to 1e-4
-  EXPECT_NEAR(fit.curve.length_mm(), truth, 0.2);  // the two end points' own noise along the edge
+  EXPECT_NEAR(fit.curve.length_mm(), truth, 0.5);  // the two end points' own noise along the edge
   EXPECT_GT(fit.points.chord_length_mm, truth + 5.0);  // what chord length would have said
   // A step back of 5 mm is no noise: refused, naming the tolerance.
   std::vector<Eigen::Vector3d> swapped = bowed(1000.0, 5.0, 0.05);

@@ -178,8 +178,12 @@ TEST(BSplineCurve, EffectiveDegreesOfFreedomRunFromTheControlPointsToALine) {
     options.lambda = lambda;
     options.effective_dof = true;
     const BSplineFit fit = fit_bspline_curve(points, options);
-    if (lambda == 0.0) EXPECT_NEAR(fit.effective_dof, 20.0, 1e-6);
-    if (lambda == 1e3) EXPECT_NEAR(fit.effective_dof, 2.0, 0.01);
+    if (lambda == 0.0) {
+      EXPECT_NEAR(fit.effective_dof, 20.0, 1e-6);
+    }
+    if (lambda == 1e3) {
+      EXPECT_NEAR(fit.effective_dof, 2.0, 0.01);
+    }
     EXPECT_LT(fit.effective_dof, previous + 1e-9) << lambda;
     previous = fit.effective_dof;
   }

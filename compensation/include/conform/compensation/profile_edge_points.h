@@ -44,9 +44,11 @@ ProfileEdgePointsCheck check_profile_edge_points(const std::vector<Eigen::Vector
                                                  const ProfileEdgePointsOptions& options,
                                                  const std::string& source = "edge points", double noise_mm = 0.0);
 
-// sigma per coordinate from the second differences P_{i-1} - 2 P_i + P_{i+1} of points sampled along a smooth curve:
-// each has covariance 6 sigma^2 I, so |d|^2 / (6 sigma^2) is chi-square with 3 degrees of freedom (median 2.366);
-// the median ignores the few triples that straddle a dropout. Zero for fewer than 3 points.
+// sigma per coordinate from each point against the chord of its two neighbours, taken at the point's own place along
+// the main axis (so that uneven steps, dropouts, cancel): across the axis that difference has variance
+// (1 + w^2 + (1 - w)^2) sigma^2 per component, w the point's fraction of the way, so the scaled squared difference is
+// sigma^2 times a chi-square with 2 degrees of freedom (median 2 ln 2); the median ignores the few triples that hold
+// an outlier. Zero for fewer than 3 points.
 double estimate_edge_noise_mm(const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace conform
