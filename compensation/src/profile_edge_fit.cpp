@@ -290,9 +290,9 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
   // spoils every second difference); a screen residual is ~1.08 times a curve's (a median of 5 carries ~0.56 sigma).
   const std::vector<double> screen = median_screen_residuals(p);
   const double screen_sigma = median_of(screen) / (1.08 * kRayleighMedian);
-  fit.noise_mm = options.noise_mm > 0.0  ? options.noise_mm
-                 : screen_sigma > 0.0 ? std::min(fit.points.noise_mm, screen_sigma)
-                                      : fit.points.noise_mm;
+  // Taken only when it is far below the second-difference one (the smaller of two estimates is biased low).
+  const bool spoiled = screen_sigma > 0.0 && screen_sigma < 0.7 * fit.points.noise_mm;
+  fit.noise_mm = options.noise_mm > 0.0 ? options.noise_mm : spoiled ? screen_sigma : fit.points.noise_mm;
   const double sigma = fit.noise_mm;
   const auto cubic = [&](const std::vector<char>& inlier) {
     return fit_cubic(p, inlier, options.cubic_length_segments);
@@ -314,6 +314,7 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
           return fit_spline(p, inlier, sigma, m, false);
         });
         const bool finer = !robust.fit.smoothing_met && options.spline_control_points == 0 &&
+                           residual_of(robust.fit, p, robust.inlier).rms_mm > 1.25 * std::sqrt(2.0) * sigma &&
                            options.knot_spacing_mm == 0.0 && attempt < 2 &&
                            fit.knot_spacing_mm >= 4.0 * fit.points.median_spacing_mm;
         if (!finer) break;
