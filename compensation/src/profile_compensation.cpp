@@ -106,9 +106,10 @@ void choose_web(const std::vector<Eigen::Vector3d>& edge_points, const ProfileCo
   if (options.fit_web_plane && r->web_tilt_deg > options.web_plane_warning_deg) {
     char text[300];
     std::snprintf(text, sizeof(text),
-                  "the fitted web plane is tilted %.2f deg from machine +z: the edge bends out of the web (sag) and "
-                  "the plane follows the bend, not the web; check it, or use machine +z (drop --web-plane)",
-                  r->web_tilt_deg);
+                  "the fitted web plane is tilted %.2f deg from machine +z, which moves a feature by %.2f mm per "
+                  "100 mm of Tx: if the edge bends out of the web (sag) the plane follows the bend, not the web; "
+                  "check it, or use machine +z (drop --web-plane)",
+                  r->web_tilt_deg, 100.0 * std::sin(r->web_tilt_deg * kDegree));
     r->warnings.push_back(text);
   }
 }

@@ -27,7 +27,8 @@ struct ProfileCompensationOptions {
   ProfileSampleOptions sampling;              // chord tolerance of mapped outlines
   std::optional<Eigen::Vector3d> web_normal;  // global Z; empty: machine +z (the paper), unless fit_web_plane
   bool fit_web_plane = false;                 // Z = the normal of the edge points' plane (only on request)
-  double web_plane_warning_deg = 3.0;         // a fitted plane tilted more than this from +z is warned about
+  double web_plane_warning_deg = 0.5;         // a fitted plane tilted more than this from +z is warned about
+                                              // (it moves a feature by Tx sin(tilt): 0.9 mm at Tx = 100 mm)
   double web_width_mm = 0.0;                  // the web's width: features beyond Tx = width are refused; 0: unknown
   bool reversed = false;                      // the edge points are listed from the profile's far end
   double arc_length_tolerance_mm = 1e-7;      // |s(t) - Ty| at every mapped point, mm (> 0)
