@@ -252,6 +252,63 @@ void record_outliers(const Prepared& p, const Reweighted& r, const std::string& 
   }
 }
 
+// The spline, reweighted. Knots tied to the step and the noise; where the spline cannot reach the noise level (detail
+// finer than the knots), they are halved, at most twice and never below two steps.
+Reweighted robust_spline(const Prepared& p, const std::vector<double>& screen, double sigma,
+                         const ProfileEdgeFitOptions& options, ProfileEdgeFit* fit) {
+  fit->knot_spacing_mm =
+      options.knot_spacing_mm > 0.0 ? options.knot_spacing_mm : automatic_knot_spacing(fit->points, sigma);
+  const auto control_points = [&]() {
+    return options.spline_control_points > 0 ? options.spline_control_points
+                                             : control_points_for(p.u_end, fit->knot_spacing_mm, p.local.size());
+  };
+  Reweighted robust;
+  for (int attempt = 0;; ++attempt) {
+    const int m = control_points();
+    robust = reweight(p, screen, sigma, options,
+                      [&](const std::vector<char>& inlier) { return fit_spline(p, inlier, sigma, m, false); });
+    const bool finer = !robust.fit.smoothing_met && options.spline_control_points == 0 &&
+                       residual_of(robust.fit, p, robust.inlier).rms_mm > 1.25 * std::sqrt(2.0) * sigma &&
+                       options.knot_spacing_mm == 0.0 && attempt < 2 &&
+                       fit->knot_spacing_mm >= 4.0 * fit->points.median_spacing_mm;
+    if (!finer) break;
+    fit->knot_spacing_mm *= 0.5;
+  }
+  // The effective degrees of freedom for the BIC, once, on the final inliers.
+  if (options.model == ProfileEdgeModel::kAuto) robust.fit = fit_spline(p, robust.inlier, sigma, control_points(), true);
+  fit->smoothing_converged = robust.fit.smoothing_met;
+  fit->spline_fit = residual_of(robust.fit, p, robust.inlier);
+  return robust;
+}
+
+// The model used (auto: the lower BIC) and a warning when the spline stays above the noise.
+void choose_model(const ProfileEdgeFitOptions& options, const ModelFit& spline, double sigma,
+                  const std::string& source, ProfileEdgeFit* fit) {
+  fit->model = options.model;
+  if (options.model == ProfileEdgeModel::kAuto) {
+    const bool cubic_wins = fit->cubic_fit.bic <= fit->spline_fit.bic;
+    fit->model = cubic_wins ? ProfileEdgeModel::kCubic : ProfileEdgeModel::kSpline;
+    fit->selection =
+        format(cubic_wins ? "auto: BIC cubic %.1f <= spline %.1f" : "auto: BIC cubic %.1f > spline %.1f",
+               fit->cubic_fit.bic, fit->spline_fit.bic) +
+        format(" (spline %.1f effective dof, knots every %.1f mm)", fit->spline_fit.dof, fit->knot_spacing_mm);
+  } else {
+    fit->selection = std::string("asked for: ") + to_string(options.model);
+  }
+  const bool use_spline = fit->model == ProfileEdgeModel::kSpline;
+  fit->curve = use_spline ? spline.curve : fit->cubic;
+  fit->rms_mm = use_spline ? fit->spline_fit.rms_mm : fit->cubic_fit.rms_mm;
+  fit->max_mm = use_spline ? fit->spline_fit.max_mm : fit->cubic_fit.max_mm;
+  if (use_spline && !fit->smoothing_converged && fit->spline_fit.rms_mm > 1.5 * std::sqrt(2.0) * sigma) {
+    char text[300];
+    std::snprintf(text, sizeof(text),
+                  ": the spline's residual (RMS %.3f mm) stays above the noise (sigma %.3f mm) even with knots every "
+                  "%.1f mm: the edge has detail finer than that (give a smaller knot spacing)",
+                  fit->spline_fit.rms_mm, sigma, fit->knot_spacing_mm);
+    fit->warnings.push_back(source + text);
+  }
+}
+
 }  // namespace
 
 bool ProfileEdgeFitOptions::IsValid(std::string* error) const {
@@ -302,33 +359,7 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
     if (options.model == ProfileEdgeModel::kCubic) {
       robust = reweight(p, screen, sigma, options, cubic);
     } else {
-      // Knots tied to the step and the noise; where the spline cannot reach the noise level (detail finer than the
-      // knots), they are halved, at most twice and never below two steps.
-      fit.knot_spacing_mm =
-          options.knot_spacing_mm > 0.0 ? options.knot_spacing_mm : automatic_knot_spacing(fit.points, sigma);
-      for (int attempt = 0;; ++attempt) {
-        const int m = options.spline_control_points > 0
-                          ? options.spline_control_points
-                          : control_points_for(p.u_end, fit.knot_spacing_mm, p.local.size());
-        robust = reweight(p, screen, sigma, options, [&](const std::vector<char>& inlier) {
-          return fit_spline(p, inlier, sigma, m, false);
-        });
-        const bool finer = !robust.fit.smoothing_met && options.spline_control_points == 0 &&
-                           residual_of(robust.fit, p, robust.inlier).rms_mm > 1.25 * std::sqrt(2.0) * sigma &&
-                           options.knot_spacing_mm == 0.0 && attempt < 2 &&
-                           fit.knot_spacing_mm >= 4.0 * fit.points.median_spacing_mm;
-        if (!finer) break;
-        fit.knot_spacing_mm *= 0.5;
-      }
-      // The effective degrees of freedom for the BIC, once, on the final inliers.
-      if (options.model == ProfileEdgeModel::kAuto) {
-        const int m = options.spline_control_points > 0
-                          ? options.spline_control_points
-                          : control_points_for(p.u_end, fit.knot_spacing_mm, p.local.size());
-        robust.fit = fit_spline(p, robust.inlier, sigma, m, true);
-      }
-      fit.smoothing_converged = robust.fit.smoothing_met;
-      fit.spline_fit = residual_of(robust.fit, p, robust.inlier);
+      robust = robust_spline(p, screen, sigma, options, &fit);
     }
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
@@ -338,29 +369,7 @@ ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, cons
   const ModelFit cubic_fit = options.model == ProfileEdgeModel::kCubic ? robust.fit : cubic(robust.inlier);
   fit.cubic = cubic_fit.curve;
   fit.cubic_fit = residual_of(cubic_fit, p, robust.inlier);
-  fit.model = options.model;
-  if (options.model == ProfileEdgeModel::kAuto) {
-    const bool cubic_wins = fit.cubic_fit.bic <= fit.spline_fit.bic;
-    fit.model = cubic_wins ? ProfileEdgeModel::kCubic : ProfileEdgeModel::kSpline;
-    fit.selection =
-        format(cubic_wins ? "auto: BIC cubic %.1f <= spline %.1f" : "auto: BIC cubic %.1f > spline %.1f",
-               fit.cubic_fit.bic, fit.spline_fit.bic) +
-        format(" (spline %.1f effective dof, knots every %.1f mm)", fit.spline_fit.dof, fit.knot_spacing_mm);
-  } else {
-    fit.selection = std::string("asked for: ") + to_string(options.model);
-  }
-  const bool use_spline = fit.model == ProfileEdgeModel::kSpline;
-  fit.curve = use_spline ? robust.fit.curve : fit.cubic;
-  fit.rms_mm = use_spline ? fit.spline_fit.rms_mm : fit.cubic_fit.rms_mm;
-  fit.max_mm = use_spline ? fit.spline_fit.max_mm : fit.cubic_fit.max_mm;
-  if (use_spline && !fit.smoothing_converged && fit.spline_fit.rms_mm > 1.5 * std::sqrt(2.0) * sigma) {
-    char text[300];
-    std::snprintf(text, sizeof(text),
-                  ": the spline's residual (RMS %.3f mm) stays above the noise (sigma %.3f mm) even with knots every "
-                  "%.1f mm: the edge has detail finer than that (give a smaller knot spacing)",
-                  fit.spline_fit.rms_mm, sigma, fit.knot_spacing_mm);
-    fit.warnings.push_back(source + text);
-  }
+  choose_model(options, robust.fit, sigma, source, &fit);
   return fit;
 }
 
