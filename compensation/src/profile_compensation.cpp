@@ -87,7 +87,13 @@ void choose_web(const std::vector<Eigen::Vector3d>& edge_points, const ProfileCo
   if (second_edge_points != nullptr) {
     ProfileEdgeFitOptions second = options.edge;
     second.model = r->edge.model;  // the same kind of curve on both edges
-    r->second_edge = fit_profile_edge(*second_edge_points, second, second_edge_source);
+    // The local map walks both edges side by side: a second edge listed the other way round is turned.
+    std::vector<Eigen::Vector3d> turned;
+    const std::vector<Eigen::Vector3d>& listed = *second_edge_points;
+    const bool opposite = listed.size() >= 2 && edge_points.size() >= 2 &&
+                          (listed.back() - listed.front()).dot(edge_points.back() - edge_points.front()) < 0.0;
+    if (opposite) turned.assign(listed.rbegin(), listed.rend());
+    r->second_edge = fit_profile_edge(opposite ? turned : listed, second, second_edge_source);
     r->local_web = true;
     r->web_source = "second edge";
     for (const std::string& w : r->second_edge->warnings) r->warnings.push_back(w);

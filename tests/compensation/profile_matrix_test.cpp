@@ -226,8 +226,12 @@ TEST(ProfileMatrix, ReversedDirection) {
   c.scan.reversed = true;
   c.options.reversed = true;
   run_seeds(c, "edge listed from the far end, --direction reverse");
-  // Without the option, the second edge shows the edge runs the wrong way.
+  // Both edges listed from the far end, with the option: the second edge is turned to run beside the first.
   c.scan.second_edge = true;
+  c.scan.deformation.twist_rad = 0.02;
+  c.second_edge = true;
+  run_seeds(c, "both edges reversed, --direction reverse");
+  // Without the option, the second edge shows the edge runs the wrong way.
   c.options.reversed = false;
   const std::string message = error_of(generate_profile_scan(c.scan), c.options, true);
   EXPECT_NE(message.find("measured from the profile's far end"), std::string::npos) << message;
