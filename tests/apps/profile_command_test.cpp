@@ -158,21 +158,11 @@ TEST(ProfileCommand, BadInputExitsTwoNamingTheProblem) {
   test::write_bytes(dir.file("far.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH9,circle,100,2990,50\n");
   expect_error({"--edge", edge, "--features", dir.file("far.csv")},
                {"far.csv:2: feature 'H9' (circle) reaches Ty = 3040.000 mm", "beyond the measured edge"});
-  // Absurd and non-finite feature values, in CSV and JSON: exit 2 naming the file, never an internal error.
-  test::write_bytes(dir.file("huge.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH1,circle,9e18,100,5\n");
-  expect_error({"--edge", edge, "--features", dir.file("huge.csv")}, {"huge.csv:2: feature 'H1'", "coordinate"});
+  // A number JSON cannot hold: exit 2 naming the file, never an internal error (the other feature checks:
+  // ProfilePipeline.AbsurdUnitsAndOffTheWebFeaturesAreRefused).
   test::write_bytes(dir.file("huge.json"),
                     "{\"features\": [{\"id\": \"H1\", \"type\": \"point\", \"tx_mm\": 1e400, \"ty_mm\": 1}]}");
   expect_error({"--edge", edge, "--features", dir.file("huge.json")}, {"huge.json: not valid JSON", "1e400"});
-  // Units: features in metres against the edge in mm.
-  test::write_bytes(dir.file("metres.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH1,circle,0.1,1.2,0.05\n");
-  expect_error({"--edge", edge, "--features", dir.file("metres.csv")}, {"are the features in metres?"});
-  // Off the web: Tx < 0, or beyond the given width.
-  test::write_bytes(dir.file("off.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH1,circle,-200,1200,50\n");
-  expect_error({"--edge", edge, "--features", dir.file("off.csv")}, {"reaches Tx = -250.000 mm", "off the web"});
-  test::write_bytes(dir.file("wide.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH1,circle,1000,1200,50\n");
-  expect_error({"--edge", edge, "--features", dir.file("wide.csv"), "--web-width", "370"},
-               {"reaches Tx = 1050.000 mm, beyond the web's width of 370.000 mm"});
   // Bad flags.
   expect_error({"--edge", edge, "--features", features, "--web-normal", "0,0"}, {"--web-normal"});
   EXPECT_EQ(conform_run({"profile", "--edge", edge, "--features", features, "--model", "quintic"}).exit_code, 2);
