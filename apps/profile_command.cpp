@@ -188,8 +188,8 @@ class ProfileCommand : public Command {
   std::string second_edge_;
   double web_width_mm_ = 0.0;
   std::string direction_ = "forward";
-  double knot_spacing_mm_ = 0.0;
-  double outlier_sigma_ = 6.0;
+  double knot_spacing_mm_ = ProfileEdgeFitOptions{}.knot_spacing_mm;
+  double outlier_sigma_ = ProfileEdgeFitOptions{}.outlier_threshold_sigma;
   double chord_tolerance_mm_ = 0.05;
   double max_gap_mm_ = 50.0;
   double noise_mm_ = 0.0;
