@@ -144,7 +144,7 @@ TEST(ProfileCompensation, AutoKeepsTheCubicWhenItFits) {
   const ProfileCompensationResult r = run(scan, ProfileEdgeModel::kAuto);
   EXPECT_EQ(r.edge.model, ProfileEdgeModel::kCubic) << r.edge.selection;
   EXPECT_TRUE(r.edge.spline_fit.fitted);
-  // The cubic fits only the noise: the chord-length parameters absorb the noise along the edge, the two components
+  // The cubic fits only the noise: the projection parameters absorb the noise along the edge, the two components
   // across it remain, RMS about sqrt(2) sigma = 0.141 mm (+-0.02: the along-edge part is not absorbed entirely).
   EXPECT_NEAR(r.edge.cubic_fit.rms_mm, std::sqrt(2.0) * 0.1, 0.02);
   EXPECT_NEAR(r.edge.noise_mm, 0.1, 0.01);  // the second-difference estimate, 2,400 triples
