@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command.h"
+#include "number_list.h"
 #include "conform/pipelines/generate_profile.h"
 #include "terminal.h"
 
@@ -43,7 +44,11 @@ class GenerateProfileCommand : public Command {
     c.add_option("--hole-radius", o_.hole_radius_mm, "Hole radius, mm");
     c.add_option("--hole-tx", o_.hole_tx_mm, "Tx of the hole centres, mm");
     c.add_flag("--marking-line", o_.marking_line, "Add a marking line (polyline M1) at Tx = width / 2");
-    c.add_option("--seed", o_.seed, "Seed of the noise and the dropouts");
+    c.add_option("--outliers", o_.outliers, "Edge samples moved off the edge (bad readings)");
+    c.add_option("--outlier-mm", o_.outlier_mm, "How far the outliers are moved, mm");
+    c.add_option("--offset", offset_, "Shop frame: every point moved by x,y,z, mm");
+    c.add_flag("--reverse", o_.reversed, "List the edge from the far end (the sensor walked backwards)");
+    c.add_option("--seed", o_.seed, "Seed of the noise, the dropouts and the outliers");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -52,6 +57,8 @@ class GenerateProfileCommand : public Command {
     options.scan = o_;
     options.scan.deformation.twist_rad = radians(twist_deg_);
     options.scan.deformation.kink_rad = radians(kink_deg_);
+    const std::vector<double> offset = parse_numbers(offset_, 3, "--offset", "x,y,z");
+    options.scan.offset_mm = Eigen::Vector3d(offset[0], offset[1], offset[2]);
     options.out_path = out_;
     const GenerateProfileResult r = run_generate_profile(options);
     if (json_) {
@@ -78,6 +85,7 @@ class GenerateProfileCommand : public Command {
 
  private:
   ProfileScanOptions o_;
+  std::string offset_ = "0,0,0";
   double twist_deg_ = 0.0;
   double kink_deg_ = 0.0;
   std::string out_;

@@ -40,20 +40,34 @@ class ProfileCommand : public Command {
                  "Designed features, .csv (id,type,tx_mm,ty_mm,radius_mm) or .json (docs/profile.md); required")
         ->required();
     c.add_option("--model", model_,
-                 "Edge model: auto (cubic unless a spline fits far better), cubic, spline")
+                 "Edge model: auto (the lower BIC of cubic and spline), cubic, spline")
         ->check(CLI::IsMember({"auto", "cubic", "spline"}));
-    CLI::Option* web =
-        c.add_option("--web-normal", web_normal_,
-                     "Web normal Z, x,y,z (any length); default: the plane of the edge points, towards +z");
+    CLI::Option* web = c.add_option("--web-normal", web_normal_,
+                                    "Web normal Z, x,y,z (any length; its sign picks the side Tx goes to), machine "
+                                    "+z as in the paper");
+    CLI::Option* plane = c.add_flag("--web-plane", web_plane_,
+                                    "Z = the normal of the edge points' plane instead (warned when tilted from +z)");
     CLI::Option* second = c.add_option("--second-edge", second_edge_,
                                        "The profile's other edge (+Tx side), CSV x_mm,y_mm,z_mm: local web direction "
                                        "for twist");
     web->excludes(second);
+    web->excludes(plane);
+    plane->excludes(second);
+    c.add_option("--web-width", web_width_mm_,
+                 "Web width, mm: features beyond Tx = width are refused (0: unknown; a second edge measures it)");
+    c.add_option("--direction", direction_,
+                 "Edge points listed from the origin (forward) or from the profile's far end (reverse)")
+        ->check(CLI::IsMember({"forward", "reverse"}));
+    c.add_option("--knot-spacing", knot_spacing_mm_,
+                 "Spline knot spacing, mm (0: max(10 steps, 250 sigma, 20 mm))");
+    c.add_option("--outlier-sigma", outlier_sigma_,
+                 "Edge points further than this many robust sigmas from the fitted edge are outliers");
     c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm");
     c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm");
     c.add_option("--noise", noise_mm_,
-                 "Edge sensor noise sigma per coordinate, mm, for the spline; default 0 (estimate)");
-    c.add_option("--out", out_, "CSV to write: id,i,x_mm,y_mm,z_mm (circle centre i = -1)");
+                 "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
+    c.add_option("--out", out_,
+                 "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -70,7 +84,13 @@ class ProfileCommand : public Command {
     options.out_path = out_;
     ProfileCompensationOptions& c = options.compensation;
     parse_profile_edge_model(model_, &c.edge.model);
-    if (!web_normal_.empty()) c.web_normal = parse_web_normal(web_normal_);
+    const Eigen::Vector3d z = parse_web_normal(web_normal_);
+    if (second_edge_.empty() && !web_plane_ && z.normalized() != Eigen::Vector3d::UnitZ()) c.web_normal = z;
+    c.fit_web_plane = web_plane_;
+    c.web_width_mm = web_width_mm_;
+    c.reversed = direction_ == "reverse";
+    c.edge.knot_spacing_mm = knot_spacing_mm_;
+    c.edge.outlier_threshold_sigma = outlier_sigma_;
     c.sampling.chord_tolerance_mm = chord_tolerance_mm_;
     c.edge.points.max_gap_mm = max_gap_mm_;
     c.edge.noise_mm = noise_mm_;
@@ -80,6 +100,7 @@ class ProfileCommand : public Command {
     } else {
       print_text(result);
     }
+    for (const std::string& w : result.compensation.warnings) warn("profile: " + w);
     if (!result.compensation.ok) {
       warn("profile: " + result.compensation.termination + "; no file written");
       return 1;
@@ -109,7 +130,17 @@ class ProfileCommand : public Command {
             {"edge_spacing_median_mm", r.edge.points.median_spacing_mm},
             {"edge_gap_max_mm", r.edge.points.max_gap_mm},
             {"noise_mm", r.edge.noise_mm},
-            {"web", r.local_web ? "second edge" : (web_normal_.empty() ? "fitted plane" : "given")},
+            {"edge_duplicates_dropped", r.edge.duplicates_dropped},
+            {"edge_reordered", r.edge.points.reordered},
+            {"edge_outliers", r.edge.outliers},
+            {"edge_outlier_indices", r.edge.outlier_indices},
+            {"reweighting_passes", r.edge.reweighting_passes},
+            {"knot_spacing_mm", r.edge.knot_spacing_mm},
+            {"smoothing_converged", r.edge.smoothing_converged},
+            {"reversed", direction_ == "reverse"},
+            {"web", r.web_source},
+            {"web_tilt_deg", r.local_web ? nlohmann::json(nullptr) : nlohmann::json(r.web_tilt_deg)},
+            {"warnings", r.warnings},
             {"web_normal", r.local_web ? nlohmann::json(nullptr) : vector_json(r.web_normal)},
             {"second_edge_points", job.second_edge_points},
             {"web_width_min_mm", r.local_web ? nlohmann::json(r.web_width_min_mm) : nlohmann::json(nullptr)},
@@ -128,6 +159,9 @@ class ProfileCommand : public Command {
     const ProfileEdgeFit& e = r.edge;
     std::printf("edge          %zu points, %.3f mm long, spacing median %.3f mm, largest gap %.3f mm, noise %.4f mm\n",
                 job.edge_points, e.curve.length_mm(), e.points.median_spacing_mm, e.points.max_gap_mm, e.noise_mm);
+    std::printf("edge points   %zu outliers rejected (%d passes), %zu duplicates dropped, %zu out of order within "
+                "the noise\n",
+                e.outliers, e.reweighting_passes, e.duplicates_dropped, e.points.reordered);
     std::printf("cubic fit     RMS %.4f mm  max %.4f mm\n", e.cubic_fit.rms_mm, e.cubic_fit.max_mm);
     if (e.spline_fit.fitted) {
       std::printf("spline fit    RMS %.4f mm  max %.4f mm\n", e.spline_fit.rms_mm, e.spline_fit.max_mm);
@@ -137,8 +171,8 @@ class ProfileCommand : public Command {
       std::printf("web           local, from the second edge (%zu points): width %.3f .. %.3f mm\n",
                   job.second_edge_points, r.web_width_min_mm, r.web_width_max_mm);
     } else {
-      std::printf("web normal    %.6f %.6f %.6f (%s)\n", r.web_normal.x(), r.web_normal.y(), r.web_normal.z(),
-                  web_normal_.empty() ? "fitted plane" : "given");
+      std::printf("web normal    %.6f %.6f %.6f (%s, %.2f deg from +z)\n", r.web_normal.x(), r.web_normal.y(),
+                  r.web_normal.z(), r.web_source.c_str(), r.web_tilt_deg);
     }
     std::printf("mapped        %zu points, arc-length residual max %.2e mm\n", r.mapped_points,
                 r.arc_length_residual_max_mm);
@@ -154,8 +188,13 @@ class ProfileCommand : public Command {
   std::string edge_;
   std::string features_;
   std::string model_ = "auto";
-  std::string web_normal_;
+  std::string web_normal_ = "0,0,1";
+  bool web_plane_ = false;
   std::string second_edge_;
+  double web_width_mm_ = 0.0;
+  std::string direction_ = "forward";
+  double knot_spacing_mm_ = ProfileEdgeFitOptions{}.knot_spacing_mm;
+  double outlier_sigma_ = ProfileEdgeFitOptions{}.outlier_threshold_sigma;
   double chord_tolerance_mm_ = 0.05;
   double max_gap_mm_ = 50.0;
   double noise_mm_ = 0.0;

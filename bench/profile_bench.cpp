@@ -4,6 +4,10 @@
 // per point (fitting/arc_length.h, no table). Target: under 50 ms for the cubic model. Times are the best of 5 runs in
 // CPU time of the calling thread; the ratio > 1 means the direct inversion is slower.
 //
+// Scale (issue 16): 100,000 point features read from a CSV and mapped on an edge of 200,000 samples (12 m at 0.06 mm),
+// target well under 1 s, against the peer of the reader's old duplicate-id check (a scan of every earlier feature
+// per new id, O(n^2), measured on 20,000 ids and scaled by the square).
+//
 //   ninja -C build profile_bench && build/bench/profile_bench
 
 #include <cmath>
@@ -13,7 +17,9 @@
 
 #include "bench_timer.h"
 #include "conform/compensation/profile_compensation.h"
+#include "conform/core/csv.h"
 #include "conform/datasets/profile.h"
+#include "conform/pipelines/profile.h"
 
 namespace {
 
@@ -22,18 +28,59 @@ using conform::bench::best_cpu_seconds;
 constexpr int kRepeats = 5;
 constexpr int kPoints = 10000;
 
-std::vector<conform::ProfileFeature> designed_points(double length_mm, double width_mm) {
+std::vector<conform::ProfileFeature> designed_points(double length_mm, double width_mm, int count = kPoints) {
   std::vector<conform::ProfileFeature> features;
-  features.reserve(kPoints);
-  for (int k = 0; k < kPoints; ++k) {
+  features.reserve(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
     conform::ProfileFeature f;
     f.id = "P" + std::to_string(k);
     f.type = conform::ProfileFeatureType::kPoint;
     // Spread over the web and along the edge, away from the very ends.
-    f.vertices = {{width_mm * ((k * 37) % 100) / 100.0, 1.0 + (length_mm - 2.0) * (k + 0.5) / kPoints}};
+    f.vertices = {{width_mm * ((k * 37) % 100) / 100.0, 1.0 + (length_mm - 2.0) * (k + 0.5) / count}};
     features.push_back(f);
   }
   return features;
+}
+
+// 100,000 features through the reader and 200,000 edge samples through compensate_profile (auto model).
+void scale() {
+  constexpr int kFeatures = 100000;
+  conform::ProfileScanOptions o;
+  o.deformation.bow_asymmetry = 0.5;
+  o.spacing_mm = 12000.0 / 199999.0;
+  o.noise_mm = 0.05;
+  o.holes = 0;
+  const conform::ProfileScan scan = conform::generate_profile_scan(o);
+  const std::vector<conform::ProfileFeature> features = designed_points(12000.0, 370.0, kFeatures);
+  conform::CsvWriter csv({"id", "type", "tx_mm", "ty_mm"}, 6);
+  for (const conform::ProfileFeature& f : features) {
+    csv.cell(f.id).cell("point").cell(f.vertices[0].x()).cell(f.vertices[0].y());
+    csv.end_row();
+  }
+  const std::string path = "/tmp/conform_profile_bench_features.csv";
+  csv.write(path);
+  std::vector<conform::ProfileFeature> read;
+  const double read_seconds = best_cpu_seconds(3, [&] { read = conform::read_profile_features(path); });
+  std::remove(path.c_str());
+  conform::ProfileCompensationResult result;
+  const double map_seconds =
+      best_cpu_seconds(3, [&] { result = conform::compensate_profile(scan.edge, read, {}); });
+  // The peer: the old duplicate-id check, every new id against every earlier feature.
+  constexpr int kPeerIds = 20000;
+  std::size_t equal = 0;
+  const double peer_seconds = best_cpu_seconds(1, [&] {
+    for (int k = 0; k < kPeerIds; ++k) {
+      for (int m = 0; m < k; ++m) equal += read[static_cast<std::size_t>(m)].id == read[static_cast<std::size_t>(k)].id;
+    }
+  });
+  const double peer_scaled = peer_seconds * (static_cast<double>(kFeatures) / kPeerIds) * (static_cast<double>(kFeatures) / kPeerIds);
+  const double total = read_seconds + map_seconds;
+  std::printf("scale: %zu edge samples, %zu features (model %s, %zu outliers, knots every %.1f mm)\n", scan.edge.size(),
+              read.size(), conform::to_string(result.edge.model), result.edge.outliers, result.edge.knot_spacing_mm);
+  std::printf("  read_profile_features %8.2f ms, compensate_profile %8.2f ms: total %.3f s  [target < 1 s: %s]\n",
+              1e3 * read_seconds, 1e3 * map_seconds, total, total < 1.0 ? "met" : "MISSED");
+  std::printf("  old O(n^2) id check, scaled to %d ids: %.2f s (%zu equal); ratio to the whole job %.0f\n", kFeatures,
+              peer_scaled, equal, peer_scaled / total);
 }
 
 }  // namespace
@@ -122,5 +169,6 @@ int main() {
       (kPoints / direct_points);
   std::printf("  spline edge: ProfileMap::map %.2f ms, direct Eq. (7) %.2f ms (1,000 points x 10); ratio %.1f\n",
               1e3 * spline_table, 1e3 * spline_direct, spline_direct / spline_table);
+  scale();
   return 0;
 }

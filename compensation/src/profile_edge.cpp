@@ -8,33 +8,8 @@
 #include <vector>
 
 #include "conform/core/error.h"
-#include "conform/fitting/bspline_fit.h"
 
 namespace conform {
-namespace {
-
-ProfileEdgeResidual residual_of(const std::vector<double>& residual_mm) {
-  ProfileEdgeResidual out;
-  out.fitted = true;
-  double sum = 0.0;
-  for (std::size_t i = 0; i < residual_mm.size(); ++i) {
-    sum += residual_mm[i] * residual_mm[i];
-    if (residual_mm[i] > out.max_mm) {
-      out.max_mm = residual_mm[i];
-      out.max_index = static_cast<int>(i);
-    }
-  }
-  out.rms_mm = residual_mm.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(residual_mm.size()));
-  return out;
-}
-
-std::string format_selection(const char* format, double a, double ratio, double b) {
-  char text[200];
-  std::snprintf(text, sizeof(text), format, a, ratio, b);
-  return text;
-}
-
-}  // namespace
 
 const char* to_string(ProfileEdgeModel model) {
   switch (model) {
@@ -58,22 +33,24 @@ bool parse_profile_edge_model(const std::string& text, ProfileEdgeModel* model) 
   return false;
 }
 
-ProfileEdgeCurve ProfileEdgeCurve::cubic(PolynomialCurve curve, int length_segments) {
+ProfileEdgeCurve ProfileEdgeCurve::cubic(PolynomialCurve curve, int length_segments, const Eigen::Vector3d& origin) {
   if (length_segments < 1) throw Error("profile edge: the cubic's arc-length table needs at least 1 segment");
   ProfileEdgeCurve out;
   out.model_ = ProfileEdgeModel::kCubic;
   out.polynomial_ = std::move(curve);
+  out.origin_ = origin;
   std::vector<double> breaks(static_cast<std::size_t>(length_segments) + 1);
   for (std::size_t k = 0; k < breaks.size(); ++k) breaks[k] = static_cast<double>(k) / length_segments;
   out.tabulate(std::move(breaks));
   return out;
 }
 
-ProfileEdgeCurve ProfileEdgeCurve::spline(BSplineCurve curve) {
+ProfileEdgeCurve ProfileEdgeCurve::spline(BSplineCurve curve, const Eigen::Vector3d& origin) {
   if (curve.closed()) throw Error("profile edge: the edge spline must be open");
   ProfileEdgeCurve out;
   out.model_ = ProfileEdgeModel::kSpline;
   out.bspline_ = std::move(curve);
+  out.origin_ = origin;
   const int spans = out.bspline_.spans();
   std::vector<double> breaks(static_cast<std::size_t>(spans) + 1);
   for (int k = 0; k <= spans; ++k)
@@ -90,9 +67,13 @@ void ProfileEdgeCurve::tabulate(std::vector<double> breaks) {
   for (std::size_t k = 1; k < t_.size(); ++k) s_[k] = s_[k - 1] + arc_length(speed, t_[k - 1], t_[k]);
 }
 
-Eigen::Vector3d ProfileEdgeCurve::position(double t) const { return derivative(t, 0); }
+Eigen::Vector3d ProfileEdgeCurve::position(double t) const { return origin_ + local_derivative(t, 0); }
 
 Eigen::Vector3d ProfileEdgeCurve::derivative(double t, int order) const {
+  return order == 0 ? position(t) : local_derivative(t, order);
+}
+
+Eigen::Vector3d ProfileEdgeCurve::local_derivative(double t, int order) const {
   return model_ == ProfileEdgeModel::kSpline ? bspline_.derivative(t, order) : polynomial_.derivative(t, order);
 }
 
@@ -130,65 +111,6 @@ double ProfileEdgeCurve::approximate_parameter_at(double s_mm) const {
   const double span = s_[k + 1] - s_[k];
   const double f = span > 0.0 ? (s - s_[k]) / span : 0.0;
   return t_[k] + f * (t_[k + 1] - t_[k]);
-}
-
-bool ProfileEdgeFitOptions::IsValid(std::string* error) const {
-  std::string problem;
-  if (!points.IsValid(&problem)) {
-  } else if (!(noise_mm >= 0.0) || !std::isfinite(noise_mm)) {
-    problem = "noise_mm must be >= 0 (0: estimate it)";
-  } else if (spline_control_points != 0 && spline_control_points < 4) {
-    problem = "spline_control_points must be 0 (automatic) or at least 4";
-  } else if (!(auto_ratio > 1.0) || !std::isfinite(auto_ratio)) {
-    problem = "auto_ratio must be > 1";
-  } else if (cubic_length_segments < 1) {
-    problem = "cubic_length_segments must be at least 1";
-  }
-  if (error != nullptr) *error = problem;
-  return problem.empty();
-}
-
-ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, const ProfileEdgeFitOptions& options,
-                                const std::string& source) {
-  std::string problem;
-  if (!options.IsValid(&problem)) throw Error(source + ": invalid edge-fit options: " + problem);
-  ProfileEdgeFit fit;
-  fit.points = check_profile_edge_points(points, options.points, source);
-  fit.noise_mm = options.noise_mm > 0.0 ? options.noise_mm : fit.points.noise_mm;
-
-  const PolynomialCurveFit cubic = fit_polynomial_curve(points, PolynomialCurveOptions{});  // Eq. (1)-(2)
-  if (!cubic.ok) throw Error(source + ": the cubic edge fit failed: " + cubic.termination);
-  fit.cubic = ProfileEdgeCurve::cubic(cubic.curve, options.cubic_length_segments);
-  fit.cubic_fit = residual_of(cubic.residual_mm);
-
-  ProfileEdgeCurve spline;
-  if (options.model != ProfileEdgeModel::kCubic) {
-    BSplineFitOptions spline_options;
-    spline_options.control_points = options.spline_control_points;
-    // splprep's s for noise sigma per coordinate is 3 n sigma^2 (bspline_fit.h); over chord-length parameters the
-    // noise along the edge goes into the parameters, so only the two components across it remain: 2 n sigma^2.
-    spline_options.smoothing_mm2 = 2.0 * static_cast<double>(points.size()) * fit.noise_mm * fit.noise_mm;
-    const BSplineFit bspline = fit_bspline_curve(points, spline_options);
-    if (!bspline.ok) throw Error(source + ": the spline edge fit failed: " + bspline.termination);
-    spline = ProfileEdgeCurve::spline(bspline.curve);
-    fit.spline_fit = residual_of(bspline.residual_mm);
-  }
-
-  fit.model = options.model;
-  if (options.model == ProfileEdgeModel::kAuto) {
-    const bool cubic_enough = fit.cubic_fit.rms_mm <= options.auto_ratio * fit.spline_fit.rms_mm;
-    fit.model = cubic_enough ? ProfileEdgeModel::kCubic : ProfileEdgeModel::kSpline;
-    fit.selection = format_selection(cubic_enough ? "auto: cubic RMS %.4f mm <= %.2f x spline RMS %.4f mm"
-                                                  : "auto: cubic RMS %.4f mm > %.2f x spline RMS %.4f mm",
-                                     fit.cubic_fit.rms_mm, options.auto_ratio, fit.spline_fit.rms_mm);
-  } else {
-    fit.selection = std::string("asked for: ") + to_string(options.model);
-  }
-  const bool use_spline = fit.model == ProfileEdgeModel::kSpline;
-  fit.curve = use_spline ? spline : fit.cubic;
-  fit.rms_mm = use_spline ? fit.spline_fit.rms_mm : fit.cubic_fit.rms_mm;
-  fit.max_mm = use_spline ? fit.spline_fit.max_mm : fit.cubic_fit.max_mm;
-  return fit;
 }
 
 }  // namespace conform

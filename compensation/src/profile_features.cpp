@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -130,10 +131,19 @@ void ProfileFeature::validate() const {
   }
   for (const Eigen::Vector2d& v : vertices) {
     if (!v.allFinite()) throw Error(name + " has a coordinate that is not finite");
+    if (v.cwiseAbs().maxCoeff() > kProfileFeatureLimitMm) {
+      char text[200];
+      std::snprintf(text, sizeof(text), " has the coordinate (%.6g, %.6g) mm, beyond %.0f mm: not a profile's", v.x(),
+                    v.y(), kProfileFeatureLimitMm);
+      throw Error(name + text);
+    }
   }
   const bool round = type == ProfileFeatureType::kCircle || type == ProfileFeatureType::kSlot;
-  if (round && !(radius_mm > 0.0 && std::isfinite(radius_mm))) {
-    throw Error(name + " needs a positive radius_mm, not " + std::to_string(radius_mm));
+  if (round && !(radius_mm > 0.0 && radius_mm <= kProfileFeatureLimitMm)) {
+    char text[200];
+    std::snprintf(text, sizeof(text), " needs a positive radius_mm up to %.0f mm, not %.6g", kProfileFeatureLimitMm,
+                  radius_mm);
+    throw Error(name + text);
   }
   if (type == ProfileFeatureType::kSlot && !((vertices[1] - vertices[0]).norm() > 0.0)) {
     throw Error(name + ": the two ends of the slot coincide (use a circle)");
@@ -158,6 +168,19 @@ void ProfileFeature::ty_range(double* lo, double* hi) const {
   for (const Eigen::Vector2d& v : vertices) {
     *lo = std::min(*lo, v.y());
     *hi = std::max(*hi, v.y());
+  }
+  if (type == ProfileFeatureType::kCircle || type == ProfileFeatureType::kSlot) {
+    *lo -= radius_mm;
+    *hi += radius_mm;
+  }
+}
+
+void ProfileFeature::tx_range(double* lo, double* hi) const {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (const Eigen::Vector2d& v : vertices) {
+    *lo = std::min(*lo, v.x());
+    *hi = std::max(*hi, v.x());
   }
   if (type == ProfileFeatureType::kCircle || type == ProfileFeatureType::kSlot) {
     *lo -= radius_mm;

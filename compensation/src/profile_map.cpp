@@ -70,17 +70,23 @@ ProfileMappedPoint ProfileMap::map(double tx_mm, double ty_mm) const {
     }
     out.across = v.normalized();
   }
-  out.position = c + tx_mm * out.across;  // Eq. (4)
+  out.position = c + tx_mm * out.across;  // Eq. (6)
+  out.tangent = tangent;
+  out.normal = tangent.cross(out.across).normalized();
   return out;
 }
 
 ProfileWebNormal fit_profile_web_normal(const std::vector<Eigen::Vector3d>& points, double min_flatness_ratio) {
   if (points.size() < 3) throw Error("profile web normal: at least 3 points are needed to fit the web plane");
+  // Relative to the first point: shop coordinates far from the origin lose no digits.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) centroid += p;
+  for (const Eigen::Vector3d& p : points) centroid += p - points.front();
   centroid /= static_cast<double>(points.size());
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const Eigen::Vector3d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d d = p - points.front() - centroid;
+    scatter += d * d.transpose();
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
   const Eigen::Vector3d values = solver.eigenvalues().cwiseMax(0.0);
   ProfileWebNormal out;

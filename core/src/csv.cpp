@@ -2,6 +2,7 @@
 
 #include "conform/core/csv.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -24,10 +25,10 @@ std::string unquote(std::string_view field) {
   return std::string(field);
 }
 
-std::vector<std::string> split(std::string_view line) {
+std::vector<std::string> split(std::string_view line, char separator) {
   std::vector<std::string> fields;
   while (true) {
-    const std::size_t end = line.find(',');
+    const std::size_t end = line.find(separator);
     fields.push_back(unquote(line.substr(0, end)));
     if (end == std::string_view::npos) return fields;
     line.remove_prefix(end + 1);
@@ -45,18 +46,27 @@ std::string header_list(const std::vector<std::string>& columns) {
   return list;
 }
 
+// Column names match whatever their case (X_MM is x_mm: spreadsheets and other tools write either).
+bool same_name(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool CsvTable::has_column(std::string_view name) const {
   for (const std::string& c : columns) {
-    if (c == name) return true;
+    if (same_name(c, name)) return true;
   }
   return false;
 }
 
 std::size_t CsvTable::column(std::string_view name) const {
   for (std::size_t c = 0; c < columns.size(); ++c) {
-    if (columns[c] == name) return c;
+    if (same_name(columns[c], name)) return c;
   }
   throw Error(path + ": no column '" + std::string(name) + "' (the header has: " + header_list(columns) + ")");
 }
@@ -101,12 +111,19 @@ CsvTable read_csv(const std::string& path) {
   const detail::FileBytes bytes = detail::read_file_bytes(path);
   CsvTable table;
   table.path = path;
-  detail::LineScanner lines(bytes.view());
+  std::string_view text = bytes.view();
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte-order mark (spreadsheet exports)
+  detail::LineScanner lines(text);
   std::string_view line;
   bool have_header = false;
+  char separator = ',';
   while (lines.next(line)) {
     if (skipped(line)) continue;
-    std::vector<std::string> fields = split(line);
+    // A header with semicolons and no comma: the whole file is separated by semicolons (European spreadsheets).
+    if (!have_header && line.find(',') == std::string_view::npos && line.find(';') != std::string_view::npos) {
+      separator = ';';
+    }
+    std::vector<std::string> fields = split(line, separator);
     if (!have_header) {
       for (std::size_t c = 0; c < fields.size(); ++c) {
         if (fields[c].empty()) {

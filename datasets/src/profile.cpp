@@ -1,5 +1,6 @@
 #include "conform/datasets/profile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -14,6 +15,25 @@ namespace {
 constexpr std::uint64_t kEdgeNoiseStream = 1;
 constexpr std::uint64_t kSecondEdgeNoiseStream = 2;
 constexpr std::uint64_t kDropoutStream = 3;
+constexpr std::uint64_t kOutlierStream = 4;
+
+// Moves `count` distinct samples (never the first or the last) across the edge (y) or along the web normal (z).
+void add_outliers(const ProfileScanOptions& o, std::vector<Eigen::Vector3d>* edge, std::vector<std::size_t>* which) {
+  if (o.outliers <= 0 || edge->size() < 3) return;
+  Random random(o.seed, kOutlierStream);
+  std::vector<bool> moved(edge->size(), false);
+  const std::size_t inner = edge->size() - 2;
+  const std::size_t count = std::min(static_cast<std::size_t>(o.outliers), inner);
+  while (which->size() < count) {
+    const std::size_t i = 1 + std::min(inner - 1, static_cast<std::size_t>(random.uniform() * static_cast<double>(inner)));
+    if (moved[i]) continue;
+    moved[i] = true;
+    const double sign = random.uniform() < 0.5 ? -1.0 : 1.0;
+    (*edge)[i][random.uniform() < 0.5 ? 1 : 2] += sign * o.outlier_mm;
+    which->push_back(i);
+  }
+  std::sort(which->begin(), which->end());
+}
 
 std::vector<Eigen::Vector3d> sample_edge(const ProfileDeformation& shape, const ProfileScanOptions& o, double tx_mm,
                                          const std::vector<bool>& keep, Random* noise) {
@@ -51,6 +71,10 @@ bool ProfileScanOptions::IsValid(std::string* error) const {
     problem = "hole_radius_mm must be positive and the holes must not overlap along the length";
   } else if (!std::isfinite(hole_tx_mm)) {
     problem = "hole_tx_mm must be finite";
+  } else if (outliers < 0 || !(outlier_mm > 0.0) || !std::isfinite(outlier_mm)) {
+    problem = "outliers must be >= 0 and outlier_mm positive";
+  } else if (!offset_mm.allFinite()) {
+    problem = "offset_mm must be finite";
   }
   if (error != nullptr) *error = problem;
   return problem.empty();
@@ -76,6 +100,15 @@ ProfileScan generate_profile_scan(const ProfileScanOptions& o) {
     Random second(o.seed, kSecondEdgeNoiseStream);
     scan.second_edge = sample_edge(shape, o, o.deformation.width_mm, keep, &second);
   }
+  add_outliers(o, &scan.edge, &scan.outlier_indices);
+  for (Eigen::Vector3d& p : scan.edge) p += o.offset_mm;
+  for (Eigen::Vector3d& p : scan.second_edge) p += o.offset_mm;
+  if (o.reversed) {
+    std::reverse(scan.edge.begin(), scan.edge.end());
+    std::reverse(scan.second_edge.begin(), scan.second_edge.end());
+    for (std::size_t& i : scan.outlier_indices) i = scan.edge.size() - 1 - i;
+    std::sort(scan.outlier_indices.begin(), scan.outlier_indices.end());
+  }
   for (int k = 0; k < o.holes; ++k) {
     const std::string id = "H" + std::to_string(k + 1);
     const double ty = L * (k + 0.5) / o.holes;
@@ -90,6 +123,7 @@ ProfileScan generate_profile_scan(const ProfileScanOptions& o) {
       add_truth(shape, "M1", i, tx, ty[i], &scan.truth);
     }
   }
+  for (ProfileTruthRow& t : scan.truth) t.position += o.offset_mm;
   return scan;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "conform/core/error.h"
@@ -59,7 +60,8 @@ struct Quadrature {
   const SpeedFunction& speed;
   double tolerance_per_t;  // the tolerance's share per unit of parameter
   int max_depth;
-  int evaluations = 0;
+  long max_evaluations;
+  long evaluations = 0;
   bool converged = true;
 
   double gauss(double a, double b) {
@@ -72,16 +74,34 @@ struct Quadrature {
   }
 
   // `whole` is the rule on [a, b]; the two halves replace it when they agree with it, otherwise each is refined.
-  double refine(double a, double b, double whole, int depth) {
-    const double mid = 0.5 * (a + b);
-    const double left = gauss(a, mid), right = gauss(mid, b);
-    const double both = left + right;
-    if (std::abs(both - whole) <= tolerance_per_t * std::abs(b - a)) return both;
-    if (depth >= max_depth || !(mid != a && mid != b)) {
-      converged = false;
-      return both;
+  // An explicit stack, not recursion, and a budget of speed evaluations: a speed that never settles (a singularity,
+  // or digits lost far from the origin) ends the refinement with converged = false instead of hanging.
+  double integrate(double a0, double b0, double whole0) {
+    struct Interval {
+      double a, b, whole;
+      int depth;
+    };
+    // Depth first: never more than max_depth + 1 (<= 61) intervals wait, so a fixed array serves (no allocation).
+    std::array<Interval, 64> stack;
+    std::size_t size = 0;
+    stack[size++] = {a0, b0, whole0, 0};
+    double total = 0.0;
+    while (size > 0) {
+      const Interval in = stack[--size];
+      const double mid = 0.5 * (in.a + in.b);
+      const double left = gauss(in.a, mid), right = gauss(mid, in.b);
+      const double both = left + right;
+      const bool met = std::abs(both - in.whole) <= tolerance_per_t * std::abs(in.b - in.a);
+      const bool stuck = in.depth >= max_depth || !(mid != in.a && mid != in.b) || evaluations >= max_evaluations;
+      if (met || stuck) {
+        if (!met) converged = false;
+        total += both;
+        continue;
+      }
+      stack[size++] = {mid, in.b, right, in.depth + 1};
+      stack[size++] = {in.a, mid, left, in.depth + 1};
     }
-    return refine(a, mid, left, depth + 1) + refine(mid, b, right, depth + 1);
+    return total;
   }
 };
 
@@ -99,6 +119,7 @@ bool ArcLengthOptions::IsValid(std::string* error) const {
   }
   if (!(relative_tolerance > 0.0 || absolute_tolerance_mm > 0.0)) return fail("one of the tolerances must be > 0");
   if (max_depth < 0 || max_depth > 60) return fail("max_depth must be in [0, 60]");
+  if (max_evaluations < 30) return fail("max_evaluations must be at least 30");
   return true;
 }
 
@@ -112,13 +133,13 @@ ArcLengthIntegral integrate_arc_length(const SpeedFunction& speed, double t0, do
     out.converged = true;
     return out;
   }
-  Quadrature q{speed, 0.0, options.max_depth};
+  Quadrature q{speed, 0.0, options.max_depth, options.max_evaluations};
   const double whole = q.gauss(t0, t1);
   const double tolerance = std::max(options.absolute_tolerance_mm, options.relative_tolerance * std::abs(whole));
   q.tolerance_per_t = tolerance / std::abs(t1 - t0);
-  out.length_mm = q.refine(t0, t1, whole, 0);
+  out.length_mm = q.integrate(t0, t1, whole);
   out.converged = q.converged && std::isfinite(out.length_mm);
-  out.evaluations = q.evaluations;
+  out.evaluations = static_cast<int>(std::min<long>(q.evaluations, INT32_MAX));
   return out;
 }
 
@@ -126,7 +147,8 @@ double arc_length(const SpeedFunction& speed, double t0, double t1, const ArcLen
   const ArcLengthIntegral integral = integrate_arc_length(speed, t0, t1, options);
   if (!integral.converged) {
     throw Error("arc length: the quadrature did not converge on [" + std::to_string(t0) + ", " + std::to_string(t1) +
-                "] (is the speed singular there?)");
+                "] within " + std::to_string(integral.evaluations) +
+                " speed evaluations (is the speed singular there, or the curve far from the origin?)");
   }
   return integral.length_mm;
 }

@@ -182,6 +182,19 @@ Search search_lambda(const SmoothingSystem& s, const BSplineCurve& shape, const 
   return out;
 }
 
+// trace((D + lambda P)^-1 D), one banded solve per column of D.
+double effective_dof(const SmoothingSystem& s, double lambda) {
+  const SparseMatrix a = s.data + lambda * s.penalty;
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(a);
+  if (ldlt.info() != Eigen::Success) return 0.0;
+  double trace = 0.0;
+  for (Eigen::Index j = 0; j < s.data.cols(); ++j) {
+    const Eigen::VectorXd column = Eigen::VectorXd(s.data.col(j));
+    trace += ldlt.solve(column)(j);
+  }
+  return trace;
+}
+
 void check_inputs(const std::vector<Eigen::Vector3d>& points, const BSplineFitOptions& o) {
   std::string why;
   if (!o.IsValid(&why)) throw Error("fit_bspline_curve: " + why);
@@ -260,6 +273,7 @@ BSplineFit fit_bspline_curve(const std::vector<Eigen::Vector3d>& points, const B
     fit.termination = "ok";
   }
   fit.curve = BSplineCurve(solution.control, options.closed, fit.parameters.front(), u_end);
+  if (options.effective_dof) fit.effective_dof = effective_dof(system, fit.lambda);
   fit.weighted_ss_mm2 = solution.weighted_ss_mm2;
   double sum_squares = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -36,6 +39,7 @@ std::vector<ProfileFeature> read_features_csv(const std::string& path) {
   const std::size_t tx = table.column("tx_mm"), ty = table.column("ty_mm");
   const bool has_radius = table.has_column("radius_mm");
   std::vector<ProfileFeature> features;
+  std::unordered_map<std::string, std::size_t> seen;  // id -> feature index: O(n) for n rows, not O(n^2)
   for (std::size_t row = 0; row < table.rows(); ++row) {
     const std::string where = path + ":" + std::to_string(table.line_numbers[row]);
     const std::string& name = table.text(row, id);
@@ -54,8 +58,9 @@ std::vector<ProfileFeature> read_features_csv(const std::string& path) {
       features.back().vertices.push_back(vertex);
       continue;
     }
-    for (const ProfileFeature& f : features) {
-      if (f.id == name) throw Error(where + ": id '" + name + "' comes back after other features (" + f.where + ")");
+    const auto [it, fresh] = seen.emplace(name, features.size());
+    if (!fresh) {
+      throw Error(where + ": id '" + name + "' comes back after other features (" + features[it->second].where + ")");
     }
     ProfileFeature f;
     f.id = name;
@@ -73,7 +78,9 @@ std::vector<ProfileFeature> read_features_csv(const std::string& path) {
 
 double json_number(const nlohmann::json& j, const char* key, const std::string& where) {
   if (!j.contains(key) || !j.at(key).is_number()) throw Error(where + ": '" + key + "' must be a number");
-  return j.at(key).get<double>();
+  const double value = j.at(key).get<double>();
+  if (!std::isfinite(value)) throw Error(where + ": '" + key + "' is not a finite number");
+  return value;
 }
 
 ProfileFeature feature_from_json(const nlohmann::json& j, const std::string& where) {
@@ -92,6 +99,7 @@ ProfileFeature feature_from_json(const nlohmann::json& j, const std::string& whe
         throw Error(where + ": 'points_mm' must hold [tx_mm, ty_mm] pairs");
       }
       f.vertices.emplace_back(p[0].get<double>(), p[1].get<double>());
+      if (!f.vertices.back().allFinite()) throw Error(where + ": 'points_mm' holds a number that is not finite");
     }
   } else {
     f.vertices = {{json_number(j, "tx_mm", where), json_number(j, "ty_mm", where)}};
@@ -108,19 +116,23 @@ std::vector<ProfileFeature> read_features_json(const std::string& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // nlohmann reads 1e400 as a number out of range: a bad file, not an internal error.
     throw Error(path + ": not valid JSON: " + e.what());
   }
   if (!j.is_object() || !j.contains("features") || !j.at("features").is_array()) {
     throw Error(path + ": expected an object with a 'features' array");
   }
   std::vector<ProfileFeature> features;
+  std::unordered_set<std::string> seen;
   for (std::size_t k = 0; k < j.at("features").size(); ++k) {
     const std::string where = path + ": features[" + std::to_string(k) + "]";
-    features.push_back(feature_from_json(j.at("features")[k], where));
-    for (std::size_t m = 0; m + 1 < features.size(); ++m) {
-      if (features[m].id == features.back().id) throw Error(where + ": id '" + features.back().id + "' repeats");
+    try {
+      features.push_back(feature_from_json(j.at("features")[k], where));
+    } catch (const nlohmann::json::exception& e) {
+      throw Error(where + ": " + e.what());
     }
+    if (!seen.insert(features.back().id).second) throw Error(where + ": id '" + features.back().id + "' repeats");
   }
   return features;
 }
@@ -151,14 +163,18 @@ std::vector<ProfileFeature> read_profile_features(const std::string& path) {
 }
 
 std::string profile_csv(const ProfileCompensationResult& result) {
-  CsvWriter csv({"id", "i", "x_mm", "y_mm", "z_mm"}, 6);
-  const auto row = [&csv](const std::string& id, int i, const Eigen::Vector3d& p) {
-    csv.cell(id).cell(i).cell(p.x()).cell(p.y()).cell(p.z());
+  CsvWriter csv({"id", "i", "tx_mm", "ty_mm", "x_mm", "y_mm", "z_mm", "nx", "ny", "nz", "dx", "dy", "dz"}, 6);
+  const auto row = [&csv](const std::string& id, int i, const Eigen::Vector2d& designed, const Eigen::Vector3d& p,
+                          const Eigen::Vector3d& normal, const Eigen::Vector3d& cut) {
+    csv.cell(id).cell(i).cell(designed.x()).cell(designed.y()).cell(p.x()).cell(p.y()).cell(p.z());
+    csv.cell(normal.x()).cell(normal.y()).cell(normal.z()).cell(cut.x()).cell(cut.y()).cell(cut.z());
     csv.end_row();
   };
   for (const ProfileFeatureResult& f : result.features) {
-    if (f.has_centre) row(f.id, -1, f.centre);
-    for (std::size_t k = 0; k < f.mapped.size(); ++k) row(f.id, static_cast<int>(k), f.mapped[k]);
+    if (f.has_centre) row(f.id, -1, f.designed_centre, f.centre, f.centre_normal, f.centre_direction);
+    for (std::size_t k = 0; k < f.mapped.size(); ++k) {
+      row(f.id, static_cast<int>(k), f.designed[k], f.mapped[k], f.normals[k], f.directions[k]);
+    }
   }
   return csv.text();
 }

@@ -1,6 +1,7 @@
 // `conform profile` end to end on generated profiles: the compensated CSV against the ground truth, the JSON keys,
 // exit code 2 with a message naming the file for bad input, no partial output, the same bytes on a rerun.
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -52,8 +53,8 @@ double worst_centre_error(const std::string& out_csv, const std::string& truth_c
     for (std::size_t b = 1; b < truth.size(); ++b) {
       const std::vector<std::string> t = fields(truth[b]);
       if (t[0] != o[0] || t[1] != "-1") continue;
-      const double dx = std::stod(o[2]) - std::stod(t[4]), dy = std::stod(o[3]) - std::stod(t[5]),
-                   dz = std::stod(o[4]) - std::stod(t[6]);
+      const double dx = std::stod(o[4]) - std::stod(t[4]), dy = std::stod(o[5]) - std::stod(t[5]),
+                   dz = std::stod(o[6]) - std::stod(t[6]);
       worst = std::max(worst, std::sqrt(dx * dx + dy * dy + dz * dz));
     }
   }
@@ -76,7 +77,7 @@ TEST(ProfileCommand, CompensatesAGeneratedProfile) {
   ASSERT_EQ(j["features"].size(), 3u);
   EXPECT_EQ(j["features"][0]["id"], "H1");
   const std::string out = test::read_bytes(dir.file("out.csv"));
-  EXPECT_EQ(lines(out)[0], "id,i,x_mm,y_mm,z_mm");
+  EXPECT_EQ(lines(out)[0], "id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz");
   // 0.3 mm: the bound for the compensated hole centres.
   EXPECT_LT(worst_centre_error(out, test::read_bytes(dir.file("p.truth.csv"))), 0.3);
   // Circle outlines are closed: the last row of H1 repeats its first (i = 0).
@@ -109,7 +110,7 @@ TEST(ProfileCommand, SplineAndSecondEdgeOptions) {
   EXPECT_LT(worst_centre_error(test::read_bytes(dir.file("out.csv")), test::read_bytes(dir.file("k.truth.csv"))), 0.3);
   // --model cubic is obeyed; --web-normal and --second-edge exclude each other.
   const auto cubic = conform_run({"profile", "--edge", edge, "--features", dir.file("k.features.csv"), "--model",
-                                  "cubic", "--web-normal", "0,0,1", "--json"});
+                                  "cubic", "--web-normal", "0.001,0,1", "--json"});
   ASSERT_EQ(cubic.exit_code, 0) << cubic.err;
   EXPECT_EQ(nlohmann::json::parse(cubic.out)["model"], "cubic");
   EXPECT_EQ(nlohmann::json::parse(cubic.out)["web"], "given");
@@ -157,9 +158,52 @@ TEST(ProfileCommand, BadInputExitsTwoNamingTheProblem) {
   test::write_bytes(dir.file("far.csv"), "id,type,tx_mm,ty_mm,radius_mm\nH9,circle,100,2990,50\n");
   expect_error({"--edge", edge, "--features", dir.file("far.csv")},
                {"far.csv:2: feature 'H9' (circle) reaches Ty = 3040.000 mm", "beyond the measured edge"});
+  // A number JSON cannot hold: exit 2 naming the file, never an internal error (the other feature checks:
+  // ProfilePipeline.AbsurdUnitsAndOffTheWebFeaturesAreRefused).
+  test::write_bytes(dir.file("huge.json"),
+                    "{\"features\": [{\"id\": \"H1\", \"type\": \"point\", \"tx_mm\": 1e400, \"ty_mm\": 1}]}");
+  expect_error({"--edge", edge, "--features", dir.file("huge.json")}, {"huge.json: not valid JSON", "1e400"});
   // Bad flags.
   expect_error({"--edge", edge, "--features", features, "--web-normal", "0,0"}, {"--web-normal"});
   EXPECT_EQ(conform_run({"profile", "--edge", edge, "--features", features, "--model", "quintic"}).exit_code, 2);
+}
+
+TEST(ProfileCommand, SpreadsheetEdgeFilesAndTheReversedDirection) {
+  test::TempDir dir;
+  const std::string edge = make_profile(dir, "p.csv");
+  const std::string features = dir.file("p.features.csv");
+  const auto base = conform_run({"profile", "--edge", edge, "--features", features, "--out", dir.file("a.csv")});
+  ASSERT_EQ(base.exit_code, 0) << base.err;
+  // BOM, upper-case names, semicolons, CRLF: the same result.
+  std::vector<std::string> rows = lines(test::read_bytes(edge));
+  std::string text = "\xEF\xBB\xBFX_MM;Y_MM;Z_MM\r\n";
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    std::string row = rows[k];
+    std::replace(row.begin(), row.end(), ',', ';');
+    text += row + "\r\n";
+  }
+  test::write_bytes(dir.file("excel.csv"), text);
+  const auto excel =
+      conform_run({"profile", "--edge", dir.file("excel.csv"), "--features", features, "--out", dir.file("b.csv")});
+  ASSERT_EQ(excel.exit_code, 0) << excel.err;
+  EXPECT_EQ(test::read_bytes(dir.file("b.csv")), test::read_bytes(dir.file("a.csv")));
+  // Listed from the far end: --direction reverse gives the same holes (to the last point's noise).
+  std::string reversed = rows[0] + "\n";
+  for (std::size_t k = rows.size() - 1; k >= 1; --k) reversed += rows[k] + "\n";
+  test::write_bytes(dir.file("reversed.csv"), reversed);
+  const auto back = conform_run({"profile", "--edge", dir.file("reversed.csv"), "--features", features, "--direction",
+                                 "reverse", "--out", dir.file("c.csv")});
+  ASSERT_EQ(back.exit_code, 0) << back.err;
+  EXPECT_LT(worst_centre_error(test::read_bytes(dir.file("c.csv")), test::read_bytes(dir.file("p.truth.csv"))), 0.3);
+  // The fitted plane only on request, with the web source in JSON.
+  const auto plane = conform_run({"profile", "--edge", edge, "--features", features, "--web-plane", "--json"});
+  ASSERT_EQ(plane.exit_code, 0) << plane.err;
+  EXPECT_EQ(nlohmann::json::parse(plane.out)["web"], "fitted plane");
+  const auto machine = conform_run({"profile", "--edge", edge, "--features", features, "--json"});
+  const auto j = nlohmann::json::parse(machine.out);
+  EXPECT_EQ(j["web"], "machine +z");
+  EXPECT_EQ(j["edge_outliers"], 0);
+  EXPECT_TRUE(j["warnings"].empty());
 }
 
 }  // namespace

@@ -144,7 +144,7 @@ TEST(ProfileCompensation, AutoKeepsTheCubicWhenItFits) {
   const ProfileCompensationResult r = run(scan, ProfileEdgeModel::kAuto);
   EXPECT_EQ(r.edge.model, ProfileEdgeModel::kCubic) << r.edge.selection;
   EXPECT_TRUE(r.edge.spline_fit.fitted);
-  // The cubic fits only the noise: the chord-length parameters absorb the noise along the edge, the two components
+  // The cubic fits only the noise: the projection parameters absorb the noise along the edge, the two components
   // across it remain, RMS about sqrt(2) sigma = 0.141 mm (+-0.02: the along-edge part is not absorbed entirely).
   EXPECT_NEAR(r.edge.cubic_fit.rms_mm, std::sqrt(2.0) * 0.1, 0.02);
   EXPECT_NEAR(r.edge.noise_mm, 0.1, 0.01);  // the second-difference estimate, 2,400 triples
@@ -170,6 +170,38 @@ TEST(ProfileCompensation, TwistNeedsTheSecondEdge) {
   EXPECT_GT(global_error, 1.0);
   EXPECT_NEAR(local.web_width_min_mm, 370.0, 1.0);
   EXPECT_NEAR(local.web_width_max_mm, 370.0, 1.0);
+}
+
+TEST(ProfileCompensation, ToolFrameFollowsTheTwist) {
+  // With the second edge, the web normal at each point is the deformed web's normal B(Ty) (the ground truth's frame),
+  // tilted by the twist; the cut direction runs along the mapped outline, perpendicular to it.
+  ProfileScanOptions o = paper_case();
+  o.deformation.twist_rad = 0.05;  // 2.9 deg end to end
+  o.second_edge = true;
+  const ProfileScan scan = generate_profile_scan(o);
+  const ProfileDeformation truth(o.deformation);
+  const ProfileCompensationResult r = run(scan, ProfileEdgeModel::kCubic, true);
+  ASSERT_TRUE(r.ok);
+  double worst_normal = 0.0, worst_along = 0.0, worst_twist = 0.0;
+  for (const ProfileFeatureResult& f : r.features) {
+    const Eigen::Vector3d b = truth.frame(f.designed_centre.y()).col(2);
+    worst_normal = std::max(worst_normal, (f.centre_normal - b).norm());
+    worst_twist = std::max(worst_twist, std::acos(std::min(1.0, b.z())));
+    const std::size_t n = f.mapped.size();
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      EXPECT_NEAR(f.directions[k].norm(), 1.0, 1e-12);
+      EXPECT_NEAR(f.directions[k].dot(f.normals[k]), 0.0, 1e-12);
+      const std::size_t before = k > 0 ? k - 1 : n - 2;
+      const Eigen::Vector3d chord = (f.mapped[k + 1] - f.mapped[before]).normalized();
+      worst_along = std::max(worst_along, (chord - f.directions[k]).norm());
+    }
+  }
+  std::printf("[tool frame, twist 0.05 rad] web normal vs truth %.2e (twist there up to %.4f rad), cut direction vs "
+              "outline chord %.2e\n",
+              worst_normal, worst_twist, worst_along);
+  EXPECT_GT(worst_twist, 0.03);      // the twist tilts the tool axis measurably
+  EXPECT_LT(worst_normal, 2e-4);     // and the output follows it (the second edge's noise over 370 mm)
+  EXPECT_LT(worst_along, 1e-3);      // the central difference of a 72-point circle is its tangent
 }
 
 TEST(ProfileCompensation, RejectsAFeatureBeyondTheEdge) {

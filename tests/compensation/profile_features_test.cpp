@@ -122,5 +122,31 @@ TEST(ProfileFeatures, ValidationNamesTheFeature) {
   EXPECT_THROW(point.validate(), Error);
 }
 
+TEST(ProfileFeatures, AbsurdValuesAreRefused) {
+  // A broken export (9e18, 1e300) is not a design: refused by name, never mapped.
+  for (double bad : {9e18, 1e300, -2e6}) {
+    ProfileFeature f{"H1", ProfileFeatureType::kCircle, {{bad, 100.0}}, 5.0, "f.csv:2"};
+    try {
+      f.validate();
+      FAIL() << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("f.csv:2: feature 'H1' (circle) has the coordinate"), std::string::npos)
+          << e.what();
+    }
+  }
+  ProfileFeature huge{"H2", ProfileFeatureType::kCircle, {{100.0, 100.0}}, 1e300, ""};
+  EXPECT_THROW(huge.validate(), Error);
+  ProfileFeature fine{"H3", ProfileFeatureType::kCircle, {{100.0, 1e6}}, 50.0, ""};
+  EXPECT_NO_THROW(fine.validate());
+}
+
+TEST(ProfileFeatures, TxRangeIncludesTheOutline) {
+  ProfileFeature slot{"S", ProfileFeatureType::kSlot, {{100.0, 500.0}, {180.0, 600.0}}, 20.0, ""};
+  double lo = 0.0, hi = 0.0;
+  slot.tx_range(&lo, &hi);
+  EXPECT_EQ(lo, 80.0);
+  EXPECT_EQ(hi, 200.0);
+}
+
 }  // namespace
 }  // namespace conform

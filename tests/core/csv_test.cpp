@@ -23,6 +23,29 @@ std::string error_of(const std::string& path) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+std::string error_of_number(const std::string& path) {
+  try {
+    read_csv(path).number(0, 0);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Csv, ToleratesAByteOrderMarkSemicolonsAndUpperCaseNames) {
+  // What spreadsheets export: a UTF-8 BOM, CRLF, upper-case names, semicolons as separators.
+  test::TempDir dir;
+  test::write_bytes(dir.file("s.csv"), "\xEF\xBB\xBFX_MM;Y_MM;Z_mm\r\n1.5;2;3\r\n4;5;6\r\n");
+  const CsvTable table = read_csv(dir.file("s.csv"), {"x_mm", "y_mm", "z_mm"});
+  ASSERT_EQ(table.rows(), 2u);
+  const Eigen::MatrixXd xyz = table.numbers({"x_mm", "y_mm", "z_mm"});
+  EXPECT_EQ(xyz(0, 0), 1.5);
+  EXPECT_EQ(xyz(1, 2), 6.0);
+  // A comma header keeps commas: a semicolon in a cell is then text (and not a number).
+  test::write_bytes(dir.file("c.csv"), "x_mm,y_mm\n1;2,3\n");
+  EXPECT_TRUE(contains(error_of_number(dir.file("c.csv")), "'1;2'"));
+}
+
 TEST(Csv, ReadsHeaderRowsAndNumbersSkippingCommentsAndBlankLines) {
   test::TempDir dir;
   test::write_bytes(dir.file("t.csv"), "# made by hand\n x_mm , y_mm,\"id\"\r\n\n1.5, -2e3 ,7\n# note\n0,0.25,8\n");

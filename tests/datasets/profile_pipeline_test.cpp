@@ -55,7 +55,7 @@ TEST(ProfilePipeline, GeneratedFilesRoundTripThroughTheCompensation) {
   ASSERT_EQ(r.compensation.features.size(), 3u);  // H1, H2, M1
   EXPECT_EQ(r.compensation.features[2].type, ProfileFeatureType::kPolyline);
   const std::string csv = test::read_bytes(job.out_path);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "id,i,x_mm,y_mm,z_mm");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz");
   EXPECT_EQ(csv.substr(csv.find('\n') + 1, 6), "H1,-1,");  // the centre first
   EXPECT_EQ(csv, profile_csv(r.compensation));
   // Rerun: the same bytes.
@@ -98,6 +98,42 @@ TEST(ProfilePipeline, FeatureErrorsNameTheFileAndLine) {
   test::write_bytes(dir.file("e.json"), "{oops");
   EXPECT_NE(error_of(dir.file("e.json")).find("not valid JSON"), std::string::npos);
   EXPECT_NE(error_of(dir.file("f.txt")).find("from .csv or .json"), std::string::npos);
+}
+
+// run_profile's message for the features in `text` against a generated 2.4 m edge (empty when it runs).
+std::string job_error(const test::TempDir& dir, const std::string& name, const std::string& text,
+                      double web_width_mm = 0.0) {
+  test::write_bytes(dir.file(name), text);
+  ProfileJobOptions job;
+  job.edge_path = dir.file("p.csv");
+  job.features_path = dir.file(name);
+  job.compensation.web_width_mm = web_width_mm;
+  try {
+    run_profile(job);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ProfilePipeline, AbsurdUnitsAndOffTheWebFeaturesAreRefused) {
+  test::TempDir dir;
+  run_generate_profile(small(dir.file("p.csv")));
+  const std::string header = "id,type,tx_mm,ty_mm,radius_mm\n";
+  EXPECT_NE(job_error(dir, "huge.csv", header + "H1,circle,9e18,100,5\n").find("huge.csv:2: feature 'H1'"),
+            std::string::npos);
+  EXPECT_NE(job_error(dir, "e300.csv", header + "H1,circle,1e300,100,5\n").find("coordinate"), std::string::npos);
+  EXPECT_NE(job_error(dir, "big.json", R"({"features": [{"id": "A", "type": "point", "tx_mm": 1e400, "ty_mm": 1}]})")
+                .find("not valid JSON"),
+            std::string::npos);
+  EXPECT_NE(job_error(dir, "m.csv", header + "H1,circle,0.1,1.2,0.05\n").find("are the features in metres?"),
+            std::string::npos);
+  EXPECT_NE(job_error(dir, "off.csv", header + "H1,circle,-200,1200,50\n").find("reaches Tx = -250.000 mm"),
+            std::string::npos);
+  EXPECT_NE(job_error(dir, "wide.csv", header + "H1,circle,1000,1200,50\n", 370.0)
+                .find("reaches Tx = 1050.000 mm, beyond the web's width of 370.000 mm"),
+            std::string::npos);
+  EXPECT_EQ(job_error(dir, "fine.csv", header + "H1,circle,100,1200,50\n", 370.0), "");
 }
 
 TEST(ProfilePipeline, NothingWrittenOnBadOptions) {

@@ -1,5 +1,6 @@
 #include "conform/datasets/profile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -83,6 +84,38 @@ TEST(ProfileScan, SameSeedSameNumbers) {
   for (const Eigen::Vector3d& p : a.edge) {
     EXPECT_EQ(full.edge[static_cast<std::size_t>(std::lround(p.x() / 5.0))], p);  // x is s to within 0.5 mm here
   }
+}
+
+TEST(ProfileScan, OutliersOffsetAndReversedListing) {
+  ProfileScanOptions o;
+  o.deformation.length_mm = 2000.0;
+  o.noise_mm = 0.0;
+  o.holes = 1;
+  const ProfileScan plain = generate_profile_scan(o);
+  o.outliers = 3;
+  o.outlier_mm = 30.0;
+  o.offset_mm = Eigen::Vector3d(1e8, -2e8, 3e6);
+  const ProfileScan faulty = generate_profile_scan(o);
+  ASSERT_EQ(faulty.edge.size(), plain.edge.size());
+  ASSERT_EQ(faulty.outlier_indices.size(), 3u);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < plain.edge.size(); ++i) {
+    const double d = (faulty.edge[i] - o.offset_mm - plain.edge[i]).norm();
+    const bool listed =
+        std::find(faulty.outlier_indices.begin(), faulty.outlier_indices.end(), i) != faulty.outlier_indices.end();
+    EXPECT_NEAR(d, listed ? 30.0 : 0.0, 1e-6) << i;  // exactly 30 mm across or along the normal, the rest offset only
+    moved += listed ? 1 : 0;
+  }
+  EXPECT_EQ(moved, 3u);
+  EXPECT_NE(faulty.outlier_indices.front(), 0u);
+  EXPECT_NE(faulty.outlier_indices.back(), plain.edge.size() - 1);
+  EXPECT_LT((faulty.truth[0].position - o.offset_mm - plain.truth[0].position).norm(), 1e-6);
+  o.reversed = true;
+  const ProfileScan reversed = generate_profile_scan(o);
+  EXPECT_EQ(reversed.edge.front(), faulty.edge.back());
+  EXPECT_EQ(reversed.edge.back(), faulty.edge.front());
+  EXPECT_EQ(reversed.outlier_indices.front(), plain.edge.size() - 1 - faulty.outlier_indices.back());
+  EXPECT_EQ(reversed.truth[0].position, faulty.truth[0].position);  // the truth stays in design coordinates
 }
 
 TEST(ProfileScan, RejectsBadOptions) {

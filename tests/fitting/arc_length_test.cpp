@@ -75,6 +75,21 @@ TEST(ArcLength, InverseSurvivesAVanishingSpeed) {
   }
 }
 
+TEST(ArcLength, ASpeedThatNeverSettlesStopsWithinTheBudget) {
+  // 1 / sqrt|t - 1/3| is integrable (4 / sqrt(3) + ... ) but the rule never meets 1e-13 next to the singularity: the
+  // refinement must stop at the evaluation budget, report it, and not recurse or hang.
+  const SpeedFunction singular = [](double t) { return 1.0 / std::sqrt(std::abs(t - 1.0 / 3.0) + 1e-300); };
+  ArcLengthOptions options;
+  options.max_evaluations = 5000;
+  const ArcLengthIntegral integral = integrate_arc_length(singular, 0.0, 1.0, options);
+  EXPECT_FALSE(integral.converged);
+  EXPECT_LE(integral.evaluations, 5000 + 20 * 62);  // the intervals still waiting get one rule each
+  EXPECT_NEAR(integral.length_mm, 2.0 * (std::sqrt(1.0 / 3.0) + std::sqrt(2.0 / 3.0)), 0.05);
+  EXPECT_THROW(arc_length(singular, 0.0, 1.0, options), Error);
+  options.max_evaluations = 10;
+  EXPECT_THROW(integrate_arc_length(singular, 0.0, 1.0, options), Error);  // invalid: below one rule's 30
+}
+
 TEST(ArcLength, RejectsBadInput) {
   const SpeedFunction speed = [](double) { return 1.0; };
   EXPECT_THROW(arc_length(speed, 0.0, std::nan("")), Error);

@@ -166,6 +166,32 @@ TEST(BSplineCurve, SmoothingGrowsWithLambda) {
   }
 }
 
+TEST(BSplineCurve, EffectiveDegreesOfFreedomRunFromTheControlPointsToALine) {
+  // The smoother's trace: m with no smoothing (every control point free), 2 when the bending weight forces a line
+  // (Hastie & Tibshirani 3.5), and in between it falls as lambda grows.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i <= 200; ++i) points.emplace_back(i, std::sin(0.05 * i), 0.0);
+  double previous = 1e9;
+  for (double lambda : {0.0, 1e-6, 1e-3, 1e3}) {
+    BSplineFitOptions options;
+    options.control_points = 20;
+    options.lambda = lambda;
+    options.effective_dof = true;
+    const BSplineFit fit = fit_bspline_curve(points, options);
+    if (lambda == 0.0) {
+      EXPECT_NEAR(fit.effective_dof, 20.0, 1e-6);
+    }
+    if (lambda == 1e3) {
+      EXPECT_NEAR(fit.effective_dof, 2.0, 0.01);
+    }
+    EXPECT_LT(fit.effective_dof, previous + 1e-9) << lambda;
+    previous = fit.effective_dof;
+  }
+  BSplineFitOptions without;
+  without.control_points = 20;
+  EXPECT_EQ(fit_bspline_curve(points, without).effective_dof, 0.0);
+}
+
 TEST(BSplineCurve, ClosedWithGivenParameters) {
   // Parameters one per point plus the period's end; the last point need not repeat the first.
   const Circle circle;

@@ -2,12 +2,20 @@
 // The edge curve of a deformed profile, fitted to its measured edge points, with arc length from the profile's origin
 // (Chen et al., LNG profiles).
 //
-//   cubic   the paper's model: one least-squares cubic C(t) over the chord-length parameter t in [0, 1] (Eq. 1-2).
-//   spline  beyond the paper: a smoothing cubic B-spline over chord length (mm), its smoothing target 2 n sigma^2 for
-//           sensor noise sigma (the noise across the edge; the parameters absorb the noise along it), which follows a
-//           local kink that one global cubic over 12 m cannot.
-//   auto    fits both and keeps the cubic unless its RMS residual exceeds the spline's by auto_ratio (a cubic that
-//           only fits the noise has the spline's residual; one that misses a kink has many times it).
+//   cubic   the paper's model: one least-squares cubic C(t) over t in [0, 1] (Eq. 1-2).
+//   spline  beyond the paper: a smoothing cubic B-spline (parameter in mm) with knots every knot_spacing_mm (tied to
+//           the sampling step and the noise), its smoothing target 2 n sigma^2 for sensor noise sigma, which follows
+//           a local kink that one global cubic over 12 m cannot.
+//   auto    fits both on the same inliers and keeps the one with the lower BIC (Schwarz 1978),
+//           n ln(RSS / n) + k ln(n), k = 12 for the cubic and 3 x the spline's effective degrees of freedom
+//           (the trace of its smoother matrix): the spline must pay for its flexibility.
+//
+// Departures from the paper, for real scans (docs/profile.md): the parameter of each point is its projection on the
+// main axis of the points (t_i of Eq. 2 uses chord length, which noise stretches: every noisy step adds to it);
+// points are centred (the curve keeps an origin) so that shop coordinates far from the machine's origin lose no
+// digits; duplicates are dropped; points out of order by less than the noise allows are sorted; outliers are
+// rejected by iterative reweighting (weight 0 beyond outlier_threshold_sigma robust sigmas of the residuals, every
+// pass re-deciding every point from the latest curve).
 //
 // Arc length s(t) = integral of |C'| from the start (Eq. 7) is tabulated once per span (spline) or per 1/256 of the
 // cubic's parameter range, so that inverting it for many points costs one short quadrature each.
@@ -34,8 +42,10 @@ bool parse_profile_edge_model(const std::string& text, ProfileEdgeModel* model);
 class ProfileEdgeCurve {
  public:
   ProfileEdgeCurve() = default;
-  static ProfileEdgeCurve cubic(PolynomialCurve curve, int length_segments = 256);
-  static ProfileEdgeCurve spline(BSplineCurve curve);
+  // The curve plus `origin` (the fits work in centred coordinates; position() adds the origin back).
+  static ProfileEdgeCurve cubic(PolynomialCurve curve, int length_segments = 256,
+                                const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+  static ProfileEdgeCurve spline(BSplineCurve curve, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
   ProfileEdgeModel model() const { return model_; }
   double t_begin() const { return t_.front(); }
@@ -55,34 +65,43 @@ class ProfileEdgeCurve {
 
   const PolynomialCurve& polynomial() const { return polynomial_; }
   const BSplineCurve& bspline() const { return bspline_; }
+  const Eigen::Vector3d& origin() const { return origin_; }
 
  private:
   void tabulate(std::vector<double> breaks);
+  Eigen::Vector3d local_derivative(double t, int order) const;
   std::size_t segment_of_length(double s_mm) const;
 
   ProfileEdgeModel model_ = ProfileEdgeModel::kCubic;
   PolynomialCurve polynomial_;
   BSplineCurve bspline_;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::vector<double> t_ = {0.0, 1.0};  // segment breaks
   std::vector<double> s_ = {0.0, 0.0};  // s(t_k)
 };
 
 struct ProfileEdgeFitOptions {
   ProfileEdgeModel model = ProfileEdgeModel::kAuto;
-  ProfileEdgePointsOptions points;  // ordering, gap and count checks
-  double noise_mm = 0.0;            // sensor noise sigma per coordinate, mm; 0: estimated from the points
-  int spline_control_points = 0;    // 0: automatic (bspline_fit.h: clamp(n / 2, 8, 4000))
-  double auto_ratio = 1.25;         // auto: spline when cubic RMS > auto_ratio * spline RMS (> 1)
-  int cubic_length_segments = 256;  // arc-length table of the cubic (>= 1)
+  ProfileEdgePointsOptions points;        // ordering, gap and count checks
+  double noise_mm = 0.0;                  // sensor noise sigma per coordinate, mm; 0: estimated from the points
+  int spline_control_points = 0;          // 0: from knot_spacing_mm
+  double knot_spacing_mm = 0.0;           // spline knots, mm; 0: max(10 x median step, 250 sigma, 20 mm)
+  double outlier_threshold_sigma = 6.0;   // a point further than this many robust sigmas from the curve is an outlier
+  double min_outlier_mm = 0.1;            // residuals below this are never outliers, mm (noise-free data)
+  int max_reweighting_passes = 12;        // of the outlier rejection (>= 1)
+  double max_outlier_fraction = 0.2;      // more outliers than this: the scan is refused (in (0, 0.5])
+  int cubic_length_segments = 256;        // arc-length table of the cubic (>= 1)
 
   bool IsValid(std::string* error) const;
 };
 
 struct ProfileEdgeResidual {
   bool fitted = false;
-  double rms_mm = 0.0;  // of |P_i - C(t_i)|
+  double rms_mm = 0.0;  // of |P_i - C(t_i)| over the inliers
   double max_mm = 0.0;
-  int max_index = 0;  // the point with the largest residual
+  int max_index = 0;    // the inlier with the largest residual (index into the input points)
+  double bic = 0.0;     // n ln(RSS / n) + k ln(n) over the 3 n inlier coordinates
+  double dof = 0.0;     // k / 3: 4 for the cubic, the spline's effective degrees of freedom per coordinate
 };
 
 struct ProfileEdgeFit {
@@ -96,10 +115,18 @@ struct ProfileEdgeFit {
   ProfileEdgeResidual spline_fit;
   double rms_mm = 0.0;  // of the chosen model
   double max_mm = 0.0;
+  std::size_t duplicates_dropped = 0;  // points identical to the one before
+  std::size_t outliers = 0;            // points rejected by the reweighting
+  std::vector<int> outlier_indices;    // input indices of the first few outliers
+  int reweighting_passes = 0;
+  bool reweighting_converged = true;   // the inlier set stopped changing before max_reweighting_passes
+  double knot_spacing_mm = 0.0;        // of the spline (0 when none was fitted)
+  bool smoothing_converged = true;     // the spline met its smoothing target
+  std::vector<std::string> warnings;   // things a user should look at (the fit is still used)
 };
 
 // Throws conform::Error (naming `source`) for invalid options or edge points that fail the checks of
-// check_profile_edge_points, or when a fit is singular.
+// check_profile_edge_points, more outliers than max_outlier_fraction, or when a fit is singular.
 ProfileEdgeFit fit_profile_edge(const std::vector<Eigen::Vector3d>& points, const ProfileEdgeFitOptions& options,
                                 const std::string& source = "edge points");
 

@@ -24,6 +24,9 @@ const char* to_string(ProfileFeatureType type);
 // "point", "circle", "slot", "polyline" or "polygon"; false for anything else.
 bool parse_profile_feature_type(const std::string& text, ProfileFeatureType* type);
 
+// No ship profile is longer than this: a designed coordinate beyond it is a broken file, not a design (mm).
+constexpr double kProfileFeatureLimitMm = 1e6;
+
 struct ProfileFeature {
   std::string id;
   ProfileFeatureType type = ProfileFeatureType::kPoint;
@@ -32,12 +35,15 @@ struct ProfileFeature {
   std::string where;                      // where it was read ("features.csv:4"), for messages
 
   // Throws conform::Error (naming id and where) for a wrong vertex count, a radius that is not positive where one is
-  // needed, a non-finite coordinate, or a slot whose ends coincide.
+  // needed, a coordinate or radius that is not finite or absurd (beyond kProfileFeatureLimitMm), or a slot whose ends
+  // coincide.
   void validate() const;
   // The designed centre for circle and slot (the middle of the slot's ends); false for the others.
   bool centre(Eigen::Vector2d* centre) const;
   // The smallest and largest Ty the feature reaches (outline included).
   void ty_range(double* lo, double* hi) const;
+  // The smallest and largest Tx the feature reaches (outline included).
+  void tx_range(double* lo, double* hi) const;
 };
 
 // Maps a designed (Tx, Ty) to 3D.

@@ -20,6 +20,8 @@ namespace conform {
 struct ProfileMappedPoint {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // P', mm
   Eigen::Vector3d across = Eigen::Vector3d::UnitY();   // V1, unit
+  Eigen::Vector3d tangent = Eigen::Vector3d::UnitX();  // V(t) of the edge (Eq. 4), unit
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the web's normal there, V x V1 (the tool axis), unit
   double t = 0.0;                                      // edge parameter with s(t) = Ty
   double arc_length_residual_mm = 0.0;                 // s(t) - Ty
   double local_width_mm = 0.0;                         // local map: the measured web width at t; 0 otherwise

@@ -35,7 +35,9 @@ struct CsvTable {
 };
 
 // Reads `path`: lines starting with '#' and blank lines are skipped; the first other line is the header; fields are
-// separated by commas and may be surrounded by spaces (a field in double quotes has them removed). Throws
+// separated by commas (by semicolons when the header has semicolons and no comma) and may be surrounded by spaces (a
+// field in double quotes has them removed); a UTF-8 byte-order mark is skipped; column names are looked up whatever
+// their case. Throws
 // conform::Error naming the file when it cannot be read, has no header, has a duplicated or empty column name, or a
 // row whose field count differs from the header's (naming the line).
 CsvTable read_csv(const std::string& path);

@@ -7,6 +7,8 @@
 // first or the last, so the edge's ends stay measured). The second edge (Tx = width) is sampled the same way with its
 // own noise. Features: `holes` circles of hole_radius_mm at Tx = hole_tx_mm, centred at Ty = L (k + 1/2) / holes
 // (the paper's experiment: five R50 holes at Tx = 100 along a 12,000 x 370 mm profile); optionally a marking line.
+// Realistic faults on request: bad readings (outliers), the shop frame far from the origin (offset), and the edge
+// listed from the far end (reversed; the ground truth stays in design coordinates).
 
 #include <cstdint>
 #include <string>
@@ -28,6 +30,10 @@ struct ProfileScanOptions {
   double hole_radius_mm = 50.0;   // (> 0)
   double hole_tx_mm = 100.0;      // their centres' Tx
   bool marking_line = false;      // a polyline along Tx = width / 2 from 5 % to 95 % of L, through its middle
+  int outliers = 0;               // edge samples (never the first or last) moved off the edge by outlier_mm (>= 0)
+  double outlier_mm = 30.0;       // across the web or along its normal, sign at random (> 0)
+  Eigen::Vector3d offset_mm = Eigen::Vector3d::Zero();  // the shop frame: every point, edge and truth, moved by it
+  bool reversed = false;          // the sensor walked from the far end: the edge points listed from Ty = L to 0
   std::uint64_t seed = 1;
 
   bool IsValid(std::string* error) const;
@@ -57,6 +63,7 @@ struct ProfileScan {
   std::vector<ProfileDesignRow> features;
   std::vector<ProfileTruthRow> truth;
   std::size_t dropped = 0;  // samples dropped from the edge
+  std::vector<std::size_t> outlier_indices;  // indices into edge of the moved samples (in the listed order)
 };
 
 // Throws conform::Error when the options are invalid or a feature falls off the profile's length.

@@ -5,7 +5,8 @@
 //
 // Quadrature: 10-point Gauss-Legendre on an interval and on its two halves; where they differ by more than the
 // interval's share of the tolerance, each half is refined in turn (Davis & Rabinowitz, Methods of Numerical
-// Integration, 2nd ed., Sec. 6.2). The nodes are computed once by Newton's method on the Legendre polynomial.
+// Integration, 2nd ed., Sec. 6.2), from an explicit stack and within a budget of speed evaluations, so that a speed
+// that never settles ends in converged = false, never in deep recursion or a hang. The nodes are computed once by Newton's method on the Legendre polynomial.
 // Inverse: Newton's step t -= (s(t) - s) / |C'(t)| inside a bracket that shrinks at every step, falling back to
 // bisection when the step leaves the bracket or the speed vanishes (Press et al., Numerical Recipes 3rd ed., 9.4).
 
@@ -21,6 +22,7 @@ struct ArcLengthOptions {
   double relative_tolerance = 1e-13;  // of the length
   double absolute_tolerance_mm = 1e-15;
   int max_depth = 48;  // bisections of the interval at most
+  long max_evaluations = 200000;  // speed evaluations at most (>= 30): the refinement stops there, not converged
 
   bool IsValid(std::string* error) const;
 };

@@ -36,6 +36,7 @@ struct BSplineFitOptions {
   double lambda = 0.0;                // the bending-energy weight, when smoothing_mm2 < 0
   double smoothing_mm2 = -1.0;        // >= 0: choose lambda so that the weighted residual sum of squares equals this
   double smoothing_tolerance = 1e-6;  // relative, on smoothing_mm2, for the lambda search
+  bool effective_dof = false;         // also compute the smoother's effective degrees of freedom (O(m^2) more work)
 
   bool IsValid(std::string* error) const;
 };
@@ -52,6 +53,9 @@ struct BSplineFit {
   double weighted_ss_mm2 = 0.0;  // sum_i w_i^2 |P_i - S(u_i)|^2
   double lambda = 0.0;           // the weight used
   int lambda_iterations = 0;     // solves of the lambda search (0 without a target)
+  // trace of the smoother matrix (D + lambda P)^-1 D per coordinate: from m (lambda 0) down to 2 (a straight line);
+  // 0 unless options.effective_dof (Hastie & Tibshirani, Generalized Additive Models, Sec. 3.5).
+  double effective_dof = 0.0;
 };
 
 // Throws conform::Error when the options are invalid (parameter or weight counts, a decreasing parameter, ...),

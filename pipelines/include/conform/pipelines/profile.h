@@ -9,7 +9,9 @@
 //                 vertices of one feature (profile_features.h: point, circle, slot, polyline, polygon)
 //   features JSON {"features": [{"id": "H1", "type": "circle", "tx_mm": 100, "ty_mm": 1200, "radius_mm": 50},
 //                               {"id": "M1", "type": "polyline", "points_mm": [[185, 600], [185, 11400]]}, ...]}
-//   out CSV       id,i,x_mm,y_mm,z_mm: the mapped centre of a circle or slot as i = -1, then its outline i = 0, 1, ...
+//   out CSV       id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz: the designed point,
+//                 where to cut it, and the tool's frame there (the web's normal, the cut direction along the mapped
+//                 outline); the mapped centre of a circle or slot as i = -1, then its outline i = 0, 1, ...
 
 #include <string>
 #include <vector>
@@ -43,7 +45,7 @@ std::vector<Eigen::Vector3d> read_profile_edge(const std::string& path);
 // the feature (JSON): unknown type, an id that comes back after other features, a missing radius, ...
 std::vector<ProfileFeature> read_profile_features(const std::string& path);
 
-// The output CSV text (id,i,x_mm,y_mm,z_mm with 6 decimals); the same result gives the same bytes.
+// The output CSV text (the columns above, 6 decimals); the same result gives the same bytes.
 std::string profile_csv(const ProfileCompensationResult& result);
 
 // Throws conform::Error for bad input (compensate_profile and the readers above); a failed run writes nothing.
