@@ -36,8 +36,18 @@ StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options) 
   f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm);
   f.plane = detail::plane_normal_matrix_of(
       f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
-      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; });
-  f.degeneracy = analyze_degeneracy(f.plane, options.degeneracy_threshold, options.free_dof);
+      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; },
+      [&](std::size_t k) {
+        const Pair& p = pairs[f.inliers[k]];
+        return p.normal.dot(p.q - p.target);
+      });
+  // The constraint is the point-to-plane one (degeneracy.h) for every method, and so is the noise that scales it.
+  const bool along_normal = options.method == IcpMethod::kPointToPoint;
+  const double noise_mm = f.kernel_scale_mm > 0.0 && !along_normal
+                              ? f.kernel_scale_mm
+                              : detail::noise_scale(pairs, f.inliers, options.min_kernel_scale_mm, along_normal);
+  f.degeneracy = analyze_constraint(f.plane, noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
+                                    options.free_dof);
   return f;
 }
 
