@@ -76,12 +76,11 @@ void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, 
     d.point = report.centre + w.cross(v) / w.squaredNorm();
     d.pitch_mm_per_rad = w.dot(v) / w.squaredNorm();
     d.relative_eigenvalue = t.relative_eigenvalue;
-    d.std_rad = std::sqrt(std::max(0.0, t.x.dot(scaled_covariance * t.x))) * t.x.head<3>().norm() /
-                report.length_scale_mm;
+    d.std_rad =
+        std::sqrt(std::max(0.0, t.x.dot(scaled_covariance * t.x))) * t.x.head<3>().norm() / report.length_scale_mm;
     report.directions.push_back(d);
   }
 }
-
 
 // Records the degenerate eigen-directions (indices into the solver's) and splits them into motions.
 void record_degenerate(const Eigen::MatrixXd& P, const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& solver,
@@ -134,7 +133,7 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 }
 
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
-                                    double tolerance_rad, const FreeDof& free_dof) {
+                                    double tolerance_rad, const FreeDof& free_dof, double min_relative) {
   DegeneracyReport report = start_report(matrix);
   report.noise_mm = noise_mm;
   report.tolerance_mm = tolerance_mm;
@@ -167,8 +166,8 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
     d.std_rad = std::sqrt(variance) * d.rotation.norm();
     d.std_mm = std::sqrt(variance) * d.translation.norm();
     const double gaussian_std = std::sqrt(gaussian);
-    d.held = !(largest > 0.0) || gaussian_std * d.rotation.norm() > tolerance_rad ||
-             gaussian_std * d.translation.norm() > tolerance_mm;
+    d.held = !(largest > 0.0) || d.relative_eigenvalue < min_relative ||
+             gaussian_std * d.rotation.norm() > tolerance_rad || gaussian_std * d.translation.norm() > tolerance_mm;
     if (d.held) degenerate.push_back(i);
     report.eigen_directions.push_back(d);
   }

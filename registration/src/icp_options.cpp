@@ -76,6 +76,9 @@ bool IcpOptions::IsValid(std::string* error) const {
   if (!(free_tolerance_mm > 0.0) || !std::isfinite(free_tolerance_mm)) {
     return fail("free_tolerance_mm = " + std::to_string(free_tolerance_mm) + ": must be finite and > 0");
   }
+  if (!(free_relative_eigenvalue >= 0.0 && free_relative_eigenvalue < 1.0)) {
+    return fail("free_relative_eigenvalue = " + std::to_string(free_relative_eigenvalue) + ": must be in [0, 1)");
+  }
   if (!(free_tolerance_rad > 0.0) || !std::isfinite(free_tolerance_rad)) {
     return fail("free_tolerance_rad = " + std::to_string(free_tolerance_rad) + ": must be finite and > 0");
   }

@@ -91,10 +91,11 @@ TEST(Constraint, RibbedPlateWeakDirectionIsFitted) {
   const double t_err = test::translation_error_mm(r.T_ref_scan, pair.T_ref_scan);
   const double r_err = test::rotation_error_deg(r.T_ref_scan, pair.T_ref_scan);
   const Eigen::Vector3d dt = r.T_ref_scan.translation() - pair.T_ref_scan.translation();
-  std::printf("  ribbed plate: %.5f mm (%.5f %.5f %.5f), %.6f deg, %d iterations (%s), noise %.4f mm, std t %.2e %.2e "
-              "%.2e mm\n", t_err, dt.x(), dt.y(), dt.z(),
-              r_err, r.iterations, to_string(r.termination), r.degeneracy.noise_mm, r.degeneracy.std(3), r.degeneracy.std(4),
-              r.degeneracy.std(5));
+  std::printf(
+      "  ribbed plate: %.5f mm (%.5f %.5f %.5f), %.6f deg, %d iterations (%s), noise %.4f mm, std t %.2e %.2e "
+      "%.2e mm\n",
+      t_err, dt.x(), dt.y(), dt.z(), r_err, r.iterations, to_string(r.termination), r.degeneracy.noise_mm,
+      r.degeneracy.std(3), r.degeneracy.std(4), r.degeneracy.std(5));
   EXPECT_TRUE(r.converged);
   EXPECT_FALSE(r.degeneracy.degenerate());  // fitted, not held (held: 1.38 mm off)
   // The ribs' 1 mm ends are sampled at 0.55 mm spacing: point-to-plane against the reference cloud's PCA normals is

@@ -19,11 +19,11 @@
 namespace conform {
 
 struct RibbedPlateOptions {
-  double length_mm = 200.0;      // along x
-  double width_mm = 150.0;       // along y
-  int ribs = 4;                  // along y, spaced along x
-  double rib_pitch_mm = 40.0;    // between ribs' centre lines
-  double rib_width_mm = 6.0;     // at the top
+  double length_mm = 200.0;    // along x
+  double width_mm = 150.0;     // along y
+  int ribs = 4;                // along y, spaced along x
+  double rib_pitch_mm = 40.0;  // between ribs' centre lines
+  double rib_width_mm = 6.0;   // at the top
   double rib_height_mm = 8.0;
   double rib_length_mm = 100.0;  // along y, centred: the ends are the only features along y
   double ramp_mm = 1.0;          // horizontal run of the rib walls and ends (steep, not vertical)

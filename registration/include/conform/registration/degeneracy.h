@@ -1,10 +1,10 @@
 #pragma once
-// Does the scan constrain all six degrees of freedom, and how well? The eigenvalues of the point-to-plane ICP normal matrix
-// H = sum J_i^T J_i, J_i = [((q_i - c) x n_i) / L, n_i] (q_i scan points in the reference frame, n_i the reference
-// normals they are paired with, c their centroid, L their RMS distance from c, so that rotation and translation are
-// in comparable units), divided by the number of pairs. A direction whose eigenvalue is below a fraction of the
-// largest moves the scan without changing any point-to-plane distance: a tube cannot fix translation along and
-// rotation about its axis, a plane neither its in-plane translations nor the rotation about its normal.
+// Does the scan constrain all six degrees of freedom, and how well? The eigenvalues of the point-to-plane ICP normal
+// matrix H = sum J_i^T J_i, J_i = [((q_i - c) x n_i) / L, n_i] (q_i scan points in the reference frame, n_i the
+// reference normals they are paired with, c their centroid, L their RMS distance from c, so that rotation and
+// translation are in comparable units), divided by the number of pairs. A direction whose eigenvalue is below a
+// fraction of the largest moves the scan without changing any point-to-plane distance: a tube cannot fix translation
+// along and rotation about its axis, a plane neither its in-plane translations nor the rotation about its normal.
 // (Gelfand et al. 2003, "Geometrically stable sampling for the ICP algorithm"; Zhang et al. 2016.)
 //
 // How small is too small is a question of noise, not of a ratio: with N pairs and residual noise sigma, the
@@ -74,14 +74,14 @@ struct DegeneracyReport {
   std::vector<Vector6d> degenerate_basis;
 
   // --- from analyze_constraint (zero from analyze_degeneracy) ---
-  double noise_mm = 0.0;               // sigma, the residuals' robust standard deviation
-  double tolerance_mm = 0.0;           // as given
+  double noise_mm = 0.0;      // sigma, the residuals' robust standard deviation
+  double tolerance_mm = 0.0;  // as given
   double tolerance_rad = 0.0;
   // sigma^2 (N H)^-1 over the free degrees of freedom, in (rx, ry, rz [rad], tx, ty, tz [mm]): rotations about the
   // reference frame's axes through `centre`, translations along them. Locked degrees of freedom have 0 rows and
   // columns; a direction with no constraint at all gets a huge (not infinite) variance.
   Matrix6d covariance = Matrix6d::Zero();
-  Vector6d std = Vector6d::Zero();  // sqrt of its diagonal: rad, rad, rad, mm, mm, mm
+  Vector6d std = Vector6d::Zero();                    // sqrt of its diagonal: rad, rad, rad, mm, mm, mm
   std::vector<ConstraintDirection> eigen_directions;  // ascending eigenvalue, the free degrees of freedom only
 
   bool degenerate() const { return !directions.empty(); }
@@ -100,7 +100,10 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 // when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than tolerance_mm along, or
 // tolerance_rad about, some axis. The reported variance of u is the larger of that and the sandwich estimate
 // u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is V diag(variances) V^T.
+// Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
+// second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
+// over the N points the std assumes independent.
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
-                                    double tolerance_rad, const FreeDof& free_dof = {});
+                                    double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0);
 
 }  // namespace conform
