@@ -16,6 +16,9 @@ namespace {
 // translation; above, a rotation. Exact subspaces give 0 or O(1); noise leaves ~1e-3.
 constexpr double kPureTranslation = 0.1;
 
+// Eigenvalues at least this fraction of the largest (std within 10 times the best-fixed direction's) are measured.
+constexpr double kMeasuredRelative = 1e-2;
+
 // v or -v, whichever has its largest component positive, so that a report does not flip with rounding.
 Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
   Eigen::Index i = 0;
@@ -166,8 +169,12 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
     d.std_rad = std::sqrt(variance) * d.rotation.norm();
     d.std_mm = std::sqrt(variance) * d.translation.norm();
     const double gaussian_std = std::sqrt(gaussian);
+    // A direction measured within a factor of ten of the best (in std) is never held: holding it cannot beat the
+    // data, however noisy (a LiDAR scene's residuals are centimetres).
+    const bool loose =
+        gaussian_std * d.rotation.norm() > tolerance_rad || gaussian_std * d.translation.norm() > tolerance_mm;
     d.held = !(largest > 0.0) || d.relative_eigenvalue < min_relative ||
-             gaussian_std * d.rotation.norm() > tolerance_rad || gaussian_std * d.translation.norm() > tolerance_mm;
+             (loose && d.relative_eigenvalue < kMeasuredRelative);
     if (d.held) degenerate.push_back(i);
     report.eigen_directions.push_back(d);
   }

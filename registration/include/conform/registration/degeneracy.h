@@ -98,7 +98,8 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 
 // The same split, with the degenerate subspace chosen by predicted standard deviation: an eigen-direction u is held
 // when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than tolerance_mm along, or
-// tolerance_rad about, some axis. The reported variance of u is the larger of that and the sandwich estimate
+// tolerance_rad about, some axis, and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
+// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of that and the sandwich estimate
 // u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is V diag(variances) V^T.
 // Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
 // second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
