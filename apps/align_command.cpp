@@ -1,5 +1,6 @@
 // `conform align`: registers a scan to its reference (pipelines/align.h) and reports T_ref_scan, convergence, the fit
-// figures and what the scan does not constrain. Exit code 1 when ICP did not converge.
+// figures, the pose's predicted standard deviations, what the scan does not constrain and whether to trust the pose.
+// Exit code 1 when ICP did not converge or the pose is not to be trusted (verdict "no").
 
 #include <cmath>
 #include <cstdio>
@@ -34,7 +35,9 @@ nlohmann::json degenerate_json(const DegeneracyReport& report) {
   for (const DegenerateDirection& d : report.directions) {
     nlohmann::json entry = {{"kind", d.kind == MotionKind::kTranslation ? "translation" : "rotation"},
                             {"direction", to_json(d.direction)},
-                            {"relative_eigenvalue", d.relative_eigenvalue}};
+                            {"relative_eigenvalue", d.relative_eigenvalue},
+                            {"std_mm", d.std_mm},
+                            {"std_deg", d.std_rad * kDeg}};
     if (d.kind == MotionKind::kRotation) {
       entry["point_mm"] = to_json(d.point);
       entry["pitch_mm_per_rad"] = d.pitch_mm_per_rad;
@@ -42,6 +45,38 @@ nlohmann::json degenerate_json(const DegeneracyReport& report) {
     list.push_back(entry);
   }
   return list;
+}
+
+// Every eigen-direction of the constraint: the motion per unit, how well it is fixed, whether it was held.
+nlohmann::json constraint_json(const DegeneracyReport& report) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ConstraintDirection& d : report.eigen_directions) {
+    list.push_back({{"rotation_rad", to_json(d.rotation)},
+                    {"translation_mm", to_json(d.translation)},
+                    {"relative_eigenvalue", d.relative_eigenvalue},
+                    {"std_deg", d.std_rad * kDeg},
+                    {"std_mm", d.std_mm},
+                    {"held", d.held}});
+  }
+  return list;
+}
+
+nlohmann::json pose_std_json(const DegeneracyReport& report) {
+  const Vector6d& s = report.std;
+  return {{"rx_deg", s(0) * kDeg}, {"ry_deg", s(1) * kDeg}, {"rz_deg", s(2) * kDeg},
+          {"tx_mm", s(3)},         {"ty_mm", s(4)},         {"tz_mm", s(5)}};
+}
+
+nlohmann::json verdict_json(const AlignVerdict& v) {
+  return {{"trust", to_string(v.trust)},
+          {"reasons", v.reasons},
+          {"summary", v.summary},
+          {"scan_noise_mm", v.scan_noise_mm},
+          {"reference_noise_mm", v.reference_noise_mm},
+          {"expected_noise_mm", v.expected_noise_mm},
+          {"fit_noise_mm", v.fit_noise_mm},
+          {"noise_ratio", v.noise_ratio},
+          {"overlap", v.overlap}};
 }
 
 // Why ICP stopped, in words a user can act on.
@@ -65,6 +100,10 @@ std::string failure_message(const AlignResult& r) {
       return "registration did not converge within " + std::to_string(icp.iterations) + " iterations (last step " +
              std::to_string(icp.last_rotation_rad * kDeg) + " deg, " + std::to_string(icp.last_translation_mm) +
              " mm). Raise --max-iterations, or start closer (--init)";
+    case IcpTermination::kConverged:
+      return "the pose is not to be trusted: " + r.verdict.summary.substr(r.verdict.summary.find(": ") + 2) +
+             ". Check the start (--init fpfh, pca or pairs:FILE), the units and that scan and reference are the same "
+             "part";
     default:
       return std::string("registration did not converge: ") + to_string(icp.termination);
   }
@@ -90,13 +129,21 @@ class AlignCommand : public Command {
     c.add_option("--overlap", options_.overlap,
                  "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed");
     c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");
+    c.add_option("--free-tolerance-mm", options_.free_tolerance_mm,
+                 "Hold a motion at the start when its predicted std (from the residuals' noise and the surface's "
+                 "constraint) exceeds this along an axis, mm");
+    c.add_option("--free-tolerance-deg", options_.free_tolerance_deg, "The same about an axis, deg");
+    c.add_option("--max-noise-ratio", options_.max_noise_ratio,
+                 "Residuals more than this many times the scan's own noise: the pose is not trusted (exit 1); 0: "
+                 "no check");
     c.add_option("--units", units_,
                  "Units of both input files and the pairs file (mm, cm, m, in); outputs are in "
                  "mm");
     c.add_option("--out-transform", options_.out_transform_path,
-                 "Write T_ref_scan (4x4 row-major text, mm) when converged");
+                 "Write T_ref_scan (4x4 row-major text, mm) unless the pose is not to be trusted");
     c.add_option("--out-aligned", options_.out_aligned_path,
-                 "Write the scan moved into the reference frame (mm), mesh or cloud as read, when converged");
+                 "Write the scan moved into the reference frame (mm), mesh or cloud as read, unless the pose is not "
+                 "to be trusted");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -126,10 +173,11 @@ class AlignCommand : public Command {
       warn("the scan does not constrain every degree of freedom; these motions were held at the start pose: " +
            degenerate_list(result.icp.degeneracy));
     }
-    if (!result.icp.converged) {
+    if (result.verdict.trust == AlignTrust::kNo) {
       std::fprintf(stderr, "conform: %s\n", failure_message(result).c_str());
       return 1;
     }
+    if (result.verdict.trust == AlignTrust::kCheck) warn(result.verdict.summary);
     return 0;
   }
 
@@ -161,8 +209,24 @@ class AlignCommand : public Command {
     for (const StartReport& s : r.coarse.ranking.starts) {
       starts.push_back({{"label", s.label}, {"score_mm", s.score_mm}, {"inlier_fraction", s.inlier_fraction}});
     }
+    const DegeneracyReport& c = icp.degeneracy;
+    nlohmann::json covariance = nlohmann::json::array();
+    for (int row = 0; row < 6; ++row) {
+      covariance.push_back(std::vector<double>{c.covariance(row, 0), c.covariance(row, 1), c.covariance(row, 2),
+                                               c.covariance(row, 3), c.covariance(row, 4), c.covariance(row, 5)});
+    }
     nlohmann::json j = {{"T_ref_scan", to_json(icp.T_ref_scan)},
-                        {"converged", icp.converged},
+                        {"converged", icp.converged && r.verdict.trust != AlignTrust::kNo},
+                        {"icp_converged", icp.converged},
+                        {"trust", to_string(r.verdict.trust)},
+                        {"verdict", verdict_json(r.verdict)},
+                        {"noise_mm", c.noise_mm},
+                        {"pose_std", pose_std_json(c)},
+                        {"pose_covariance", covariance},
+                        {"covariance_centre_mm", to_json(c.centre)},
+                        {"constraint_directions", constraint_json(c)},
+                        {"free_tolerance_mm", c.tolerance_mm},
+                        {"free_tolerance_deg", c.tolerance_rad * kDeg},
                         {"iterations", icp.iterations},
                         {"termination", to_string(icp.termination)},
                         {"rms_mm", icp.rms_mm},
@@ -218,10 +282,22 @@ class AlignCommand : public Command {
     std::printf("  (smallest/largest %.3g)\n", icp.degeneracy.relative_smallest());
     if (icp.degeneracy.directions.empty()) std::printf("degenerate    none: all degrees of freedom constrained\n");
     for (const DegenerateDirection& d : icp.degeneracy.directions) {
-      std::printf("degenerate    %s (relative eigenvalue %.2g)\n", describe(d).c_str(), d.relative_eigenvalue);
+      const bool t = d.kind == MotionKind::kTranslation;
+      std::printf("degenerate    %s (predicted std %.3g %s, relative eigenvalue %.2g)\n", describe(d).c_str(),
+                  t ? d.std_mm : d.std_rad * kDeg, t ? "mm" : "deg", d.relative_eigenvalue);
     }
+    const Vector6d& s = icp.degeneracy.std;
+    std::printf(
+        "pose std      rx %.2g ry %.2g rz %.2g deg, tx %.2g ty %.2g tz %.2g mm (free above %.3g mm, %.3g deg)\n",
+        s(0) * kDeg, s(1) * kDeg, s(2) * kDeg, s(3), s(4), s(5), icp.degeneracy.tolerance_mm,
+        icp.degeneracy.tolerance_rad * kDeg);
+    const AlignVerdict& v = r.verdict;
+    std::printf("noise mm      fit %.4g, scan %.4g", v.fit_noise_mm, v.scan_noise_mm);
+    if (v.reference_noise_mm > 0.0) std::printf(", reference %.4g", v.reference_noise_mm);
+    std::printf(" (ratio %.2f)\n", v.noise_ratio);
     if (!r.transform_path.empty()) std::printf("transform     %s\n", r.transform_path.c_str());
     if (!r.aligned_path.empty()) std::printf("aligned       %s\n", r.aligned_path.c_str());
+    std::printf("verdict       %s\n", v.summary.c_str());
   }
 
   AlignOptions options_;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "align_inputs.h"
+#include "align_verdict.h"
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
@@ -33,6 +34,8 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
   icp.kernel = options.kernel;
   icp.max_iterations = options.max_iterations;
   icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, options.overlap);
+  icp.free_tolerance_mm = options.free_tolerance_mm;
+  icp.free_tolerance_rad = options.free_tolerance_deg * M_PI / 180.0;
   icp.progress = options.progress;
   return icp;
 }
@@ -97,6 +100,18 @@ void write_outputs(const Mesh& scan_mesh, const AlignOptions& options, AlignResu
 
 }  // namespace
 
+const char* to_string(AlignTrust trust) {
+  switch (trust) {
+    case AlignTrust::kYes:
+      return "yes";
+    case AlignTrust::kCheck:
+      return "check";
+    case AlignTrust::kNo:
+      return "no";
+  }
+  return "unknown";
+}
+
 const char* to_string(AlignInit init) {
   switch (init) {
     case AlignInit::kNone:
@@ -133,6 +148,11 @@ bool AlignOptions::IsValid(std::string* error) const {
     why = "max_scan_points must be >= 10";
   } else if (!(max_size_ratio == 0.0 || max_size_ratio > 1.0)) {
     why = "max_size_ratio must be > 1 (0: no check)";
+  } else if (!(free_tolerance_mm > 0.0) || !std::isfinite(free_tolerance_mm) || !(free_tolerance_deg > 0.0) ||
+             !std::isfinite(free_tolerance_deg)) {
+    why = "free tolerances must be finite and > 0";
+  } else if (!(max_noise_ratio == 0.0 || max_noise_ratio > 1.0) || !std::isfinite(max_noise_ratio)) {
+    why = "max_noise_ratio must be > 1 (0: no check)";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -184,7 +204,8 @@ AlignResult run_align(const AlignOptions& options) {
                                                          : kAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, options, result.max_distance_mm, result);
   result.icp = icp(scan, reference, result.T_start, fine_options(options, result.method, result.max_distance_mm));
-  if (result.icp.converged) write_outputs(scan_mesh, options, result);
+  result.verdict = detail::judge_alignment(scan, reference_mesh, options, result);
+  if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
   return result;
 }
 

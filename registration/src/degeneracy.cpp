@@ -16,6 +16,9 @@ namespace {
 // translation; above, a rotation. Exact subspaces give 0 or O(1); noise leaves ~1e-3.
 constexpr double kPureTranslation = 0.1;
 
+// Eigenvalues at least this fraction of the largest (std within 10 times the best-fixed direction's) are measured.
+constexpr double kMeasuredRelative = 1e-2;
+
 // v or -v, whichever has its largest component positive, so that a report does not flip with rounding.
 Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
   Eigen::Index i = 0;
@@ -35,7 +38,9 @@ Eigen::MatrixXd free_basis(const FreeDof& free_dof) {
 // Splits the degenerate subspace D (orthonormal columns) into pure translations and rotations: the right singular
 // vectors of D's rotation rows with (near) zero singular value combine to translations, the others to rotations,
 // whose axis point is c + w x v / |w|^2 once the degenerate translations are taken out of v.
-void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, DegeneracyReport& report) {
+// `scaled_covariance` (of the scaled twist) gives each motion its predicted standard deviation; zero: none.
+void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, const Matrix6d& scaled_covariance,
+                   DegeneracyReport& report) {
   const Eigen::MatrixXd W = D.topRows(3);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W, Eigen::ComputeFullV);
   const Eigen::MatrixXd V = svd.matrixV();
@@ -58,6 +63,7 @@ void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, 
     d.direction = canonical(x.tail<3>().normalized());
     d.point = report.centre;
     d.relative_eigenvalue = relative;
+    d.std_mm = std::sqrt(std::max(0.0, x.dot(scaled_covariance * x)));
     translations.push_back(d.direction);
     report.directions.push_back(d);
   }
@@ -73,8 +79,30 @@ void split_motions(const Eigen::MatrixXd& D, const Matrix6d& H, double largest, 
     d.point = report.centre + w.cross(v) / w.squaredNorm();
     d.pitch_mm_per_rad = w.dot(v) / w.squaredNorm();
     d.relative_eigenvalue = t.relative_eigenvalue;
+    d.std_rad =
+        std::sqrt(std::max(0.0, t.x.dot(scaled_covariance * t.x))) * t.x.head<3>().norm() / report.length_scale_mm;
     report.directions.push_back(d);
   }
+}
+
+// Records the degenerate eigen-directions (indices into the solver's) and splits them into motions.
+void record_degenerate(const Eigen::MatrixXd& P, const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& solver,
+                       const std::vector<Eigen::Index>& degenerate, const PlaneNormalMatrix& matrix, double largest,
+                       const Matrix6d& scaled_covariance, DegeneracyReport& report) {
+  if (degenerate.empty()) return;
+  Eigen::MatrixXd D(6, static_cast<Eigen::Index>(degenerate.size()));
+  for (std::size_t k = 0; k < degenerate.size(); ++k) {
+    D.col(static_cast<Eigen::Index>(k)) = P * solver.eigenvectors().col(degenerate[k]);
+    report.degenerate_basis.push_back(D.col(static_cast<Eigen::Index>(k)));
+  }
+  if (report.length_scale_mm > 0.0) split_motions(D, matrix.H, largest, scaled_covariance, report);
+}
+
+DegeneracyReport start_report(const PlaneNormalMatrix& matrix) {
+  DegeneracyReport report;
+  report.centre = matrix.centre;
+  report.length_scale_mm = matrix.length_scale_mm;
+  return report;
 }
 
 }  // namespace
@@ -91,10 +119,8 @@ PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, con
 }
 
 DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof) {
-  DegeneracyReport report;
+  DegeneracyReport report = start_report(matrix);
   report.threshold = threshold;
-  report.centre = matrix.centre;
-  report.length_scale_mm = matrix.length_scale_mm;
   const Eigen::MatrixXd P = free_basis(free_dof);
   if (P.cols() == 0) return report;
   const Eigen::MatrixXd Hf = P.transpose() * matrix.H * P;
@@ -105,13 +131,58 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
   for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) {
     if (!(report.eigenvalues(i) >= threshold * largest) || !(largest > 0.0)) degenerate.push_back(i);
   }
-  if (degenerate.empty()) return report;
-  Eigen::MatrixXd D(6, static_cast<Eigen::Index>(degenerate.size()));
-  for (std::size_t k = 0; k < degenerate.size(); ++k) {
-    D.col(static_cast<Eigen::Index>(k)) = P * solver.eigenvectors().col(degenerate[k]);
-    report.degenerate_basis.push_back(D.col(static_cast<Eigen::Index>(k)));
+  record_degenerate(P, solver, degenerate, matrix, largest, Matrix6d::Zero(), report);
+  return report;
+}
+
+DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
+                                    double tolerance_rad, const FreeDof& free_dof, double min_relative) {
+  DegeneracyReport report = start_report(matrix);
+  report.noise_mm = noise_mm;
+  report.tolerance_mm = tolerance_mm;
+  report.tolerance_rad = tolerance_rad;
+  const Eigen::MatrixXd P = free_basis(free_dof);
+  const double L = matrix.length_scale_mm;
+  if (P.cols() == 0 || !(L > 0.0)) return report;
+  const Eigen::MatrixXd Hf = P.transpose() * matrix.H * P;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(Hf);
+  report.eigenvalues = solver.eigenvalues().cwiseMax(0.0);
+  const double largest = report.eigenvalues(report.eigenvalues.size() - 1);
+  const double count = static_cast<double>(matrix.count);
+  // An exactly unconstrained direction gets the variance of an eigenvalue 1e-15 of the largest: huge, finite.
+  const double floor = std::max(largest * 1e-15, 1e-300);
+  Matrix6d scaled_covariance = Matrix6d::Zero();
+  std::vector<Eigen::Index> degenerate;
+  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) {
+    const Vector6d u = P * solver.eigenvectors().col(i);
+    // sigma^2 (N H)^-1 along the eigenvector: the Gauss-Newton covariance of the scaled twist.
+    const double lambda = std::max(report.eigenvalues(i), floor);
+    const double gaussian = noise_mm * noise_mm / (count * lambda);
+    // The sandwich sees the residuals where this direction is measured; away from the optimum they are the pose's
+    // error, not noise, so only the robust noise decides what is held (else a wrong start would hold itself).
+    const double variance = std::max(gaussian, u.dot(matrix.residual_moment * u) / (count * lambda * lambda));
+    scaled_covariance.noalias() += variance * u * u.transpose();
+    ConstraintDirection d;
+    d.rotation = u.head<3>() / L;
+    d.translation = u.tail<3>();
+    d.relative_eigenvalue = largest > 0.0 ? report.eigenvalues(i) / largest : 0.0;
+    d.std_rad = std::sqrt(variance) * d.rotation.norm();
+    d.std_mm = std::sqrt(variance) * d.translation.norm();
+    const double gaussian_std = std::sqrt(gaussian);
+    // A direction measured within a factor of ten of the best (in std) is never held: holding it cannot beat the
+    // data, however noisy (a LiDAR scene's residuals are centimetres).
+    const bool loose =
+        gaussian_std * d.rotation.norm() > tolerance_rad || gaussian_std * d.translation.norm() > tolerance_mm;
+    d.held = !(largest > 0.0) || d.relative_eigenvalue < min_relative ||
+             (loose && d.relative_eigenvalue < kMeasuredRelative);
+    if (d.held) degenerate.push_back(i);
+    report.eigen_directions.push_back(d);
   }
-  if (report.length_scale_mm > 0.0) split_motions(D, matrix.H, largest, report);
+  Vector6d scale;
+  scale << 1.0 / L, 1.0 / L, 1.0 / L, 1.0, 1.0, 1.0;
+  report.covariance = scale.asDiagonal() * scaled_covariance * scale.asDiagonal();
+  report.std = report.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  record_degenerate(P, solver, degenerate, matrix, largest, scaled_covariance, report);
   return report;
 }
 

@@ -27,26 +27,48 @@ struct StepFigures {
   std::vector<double> weights;
   double kernel_scale_mm = 0.0;
   PlaneNormalMatrix plane;
-  DegeneracyReport degeneracy;
+  double noise_mm = 0.0;
+  DegeneracyReport degeneracy;  // what the step holds: with the hold noise
 };
 
-StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options) {
+// One run of ICP's iterations: hold_noise_mm decides what is held (degeneracy.h); `held` is how many directions the
+// last recorded step held.
+struct Pass {
+  double hold_noise_mm = 0.0;
+  std::size_t held = 0;
+};
+
+StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, double hold_noise_mm) {
   StepFigures f;
   f.inliers = detail::select_inliers(pairs, options.overlap);
   f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm);
   f.plane = detail::plane_normal_matrix_of(
       f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
-      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; });
-  f.degeneracy = analyze_degeneracy(f.plane, options.degeneracy_threshold, options.free_dof);
+      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; },
+      [&](std::size_t k) {
+        const Pair& p = pairs[f.inliers[k]];
+        return p.normal.dot(p.q - p.target);
+      });
+  // The constraint is the point-to-plane one (degeneracy.h) for every method, and so is the noise that scales it.
+  const bool along_normal = options.method == IcpMethod::kPointToPoint;
+  f.noise_mm = f.kernel_scale_mm > 0.0 && !along_normal
+                   ? f.kernel_scale_mm
+                   : detail::noise_scale(pairs, f.inliers, options.min_kernel_scale_mm, along_normal);
+  f.degeneracy = analyze_constraint(f.plane, hold_noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
+                                    options.free_dof, options.free_relative_eigenvalue);
   return f;
 }
 
-void record(const std::vector<Pair>& pairs, StepFigures&& f, std::size_t scan_size, IcpResult& result) {
+// The report is the constraint at the residuals' own noise, whatever the step held.
+void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t scan_size, const IcpOptions& options,
+            Pass& pass, IcpResult& result) {
   result.rms_mm = detail::inlier_rms(pairs, f.inliers);
   result.inliers = f.inliers.size();
   result.inlier_fraction = static_cast<double>(f.inliers.size()) / static_cast<double>(scan_size);
   result.kernel_scale_mm = f.kernel_scale_mm;
-  result.degeneracy = std::move(f.degeneracy);
+  result.degeneracy = analyze_constraint(f.plane, f.noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
+                                         options.free_dof, options.free_relative_eigenvalue);
+  pass.held = f.degeneracy.degenerate_basis.size();
 }
 
 void check_input(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
@@ -66,15 +88,15 @@ void check_input(const std::vector<Eigen::Vector3d>& scan, const IcpReference& r
 // left. `result` keeps the figures of the last pairs found (at the pose the last step started from).
 void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& reference, const IcpOptions& options,
              const detail::PairRules& rules, double tolerance_scale, int max_iterations, std::vector<Pair>& pairs,
-             IcpResult& result) {
+             Pass& pass, IcpResult& result) {
   const bool point_to_point = options.method == IcpMethod::kPointToPoint;
   while (result.iterations < max_iterations) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
     detail::find_pairs(points, result.T_ref_scan, reference, rules, pairs);
-    StepFigures f = evaluate(pairs, options);
+    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
     if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) {
       result.termination = IcpTermination::kTooFewCorrespondences;
-      record(pairs, std::move(f), points.size(), result);
+      record(pairs, f, points.size(), options, pass, result);
       return;
     }
     const bool frozen = options.freeze_degenerate && f.degeneracy.degenerate();
@@ -87,7 +109,7 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
                                         f.plane.length_scale_mm, basis);
     }
     const Eigen::Vector3d centre = f.plane.centre;
-    record(pairs, std::move(f), points.size(), result);
+    record(pairs, f, points.size(), options, pass, result);
     result.T_ref_scan = delta * result.T_ref_scan;
     ++result.iterations;
     result.last_rotation_rad = rotation_angle(delta);
@@ -99,6 +121,38 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
       return;
     }
   }
+}
+
+// ICP from T_ref_scan_init with `pass.hold_noise_mm` deciding what is held.
+IcpResult run_pass(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                   const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options, Pass& pass) {
+  detail::PairRules rules;
+  rules.method = options.method;
+  rules.max_distance_mm = options.max_correspondence_distance_mm;
+  IcpResult result;
+  result.T_ref_scan = T_ref_scan_init;
+  std::vector<Pair> pairs;
+  if (options.coarse_points > 0 && scan.size() > 2 * options.coarse_points) {
+    // Multi-resolution: the big steps on an even subset, the last ones (and the tolerances) on every point.
+    // At most half the iterations, so that the full set always has its share.
+    iterate(stride_downsample(scan, options.coarse_points), reference, options, rules, kCoarseToleranceScale,
+            std::max(1, options.max_iterations / 2), pairs, pass, result);
+    result.converged = false;
+    result.termination = IcpTermination::kFailure;  // the full set decides, whatever the subset found
+  }
+  iterate(scan, reference, options, rules, 1.0, options.max_iterations, pairs, pass, result);
+  if (result.termination == IcpTermination::kFailure) {
+    // Out of iterations: the figures at the final pose, which may be far from where the last step started. (When
+    // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
+    result.termination = IcpTermination::kMaxIterations;
+    detail::find_pairs(scan, result.T_ref_scan, reference, rules, pairs);
+    record(pairs, evaluate(pairs, options, pass.hold_noise_mm), scan.size(), options, pass, result);
+  }
+  if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {
+    result.converged = false;
+    result.termination = IcpTermination::kInsufficientOverlap;
+  }
+  return result;
 }
 
 }  // namespace
@@ -113,31 +167,16 @@ double rotation_angle(const Eigen::Isometry3d& T) {
 IcpResult icp(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
               const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options) {
   check_input(scan, reference, T_ref_scan_init, options);
-  detail::PairRules rules;
-  rules.method = options.method;
-  rules.max_distance_mm = options.max_correspondence_distance_mm;
-  IcpResult result;
-  result.T_ref_scan = T_ref_scan_init;
-  std::vector<Pair> pairs;
-  if (options.coarse_points > 0 && scan.size() > 2 * options.coarse_points) {
-    // Multi-resolution: the big steps on an even subset, the last ones (and the tolerances) on every point.
-    // At most half the iterations, so that the full set always has its share.
-    iterate(stride_downsample(scan, options.coarse_points), reference, options, rules, kCoarseToleranceScale,
-            std::max(1, options.max_iterations / 2), pairs, result);
-    result.converged = false;
-    result.termination = IcpTermination::kFailure;  // the full set decides, whatever the subset found
-  }
-  iterate(scan, reference, options, rules, 1.0, options.max_iterations, pairs, result);
-  if (result.termination == IcpTermination::kFailure) {
-    // Out of iterations: the figures at the final pose, which may be far from where the last step started. (When
-    // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
-    result.termination = IcpTermination::kMaxIterations;
-    detail::find_pairs(scan, result.T_ref_scan, reference, rules, pairs);
-    record(pairs, evaluate(pairs, options), scan.size(), result);
-  }
-  if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {
-    result.converged = false;
-    result.termination = IcpTermination::kInsufficientOverlap;
+  // Away from the optimum the residuals are the pose's error, not noise: holding by them would hold everything at
+  // a wrong start. So the first pass holds only what the noise floor cannot fix (a plane's in-plane motions); when
+  // the residuals' noise at its end leaves more directions too loose, a second pass from the start holds them.
+  Pass first{options.min_kernel_scale_mm, 0};
+  IcpResult result = run_pass(scan, reference, T_ref_scan_init, options, first);
+  if (result.converged && options.freeze_degenerate && result.degeneracy.degenerate_basis.size() > first.held) {
+    Pass second{result.degeneracy.noise_mm, 0};
+    const int iterations = result.iterations;
+    result = run_pass(scan, reference, T_ref_scan_init, options, second);
+    result.iterations += iterations;
   }
   report(options.progress, "icp", 1.0);
   return result;

@@ -73,8 +73,14 @@ bool IcpOptions::IsValid(std::string* error) const {
     return fail("min_inlier_fraction = " + std::to_string(min_inlier_fraction) + ": must be in [0, overlap]");
   }
   if (free_dof.count() == 0) return fail("free_dof: every degree of freedom is locked; nothing to fit");
-  if (!(degeneracy_threshold > 0.0 && degeneracy_threshold < 1.0)) {
-    return fail("degeneracy_threshold = " + std::to_string(degeneracy_threshold) + ": must be in (0, 1)");
+  if (!(free_tolerance_mm > 0.0) || !std::isfinite(free_tolerance_mm)) {
+    return fail("free_tolerance_mm = " + std::to_string(free_tolerance_mm) + ": must be finite and > 0");
+  }
+  if (!(free_relative_eigenvalue >= 0.0 && free_relative_eigenvalue < 1.0)) {
+    return fail("free_relative_eigenvalue = " + std::to_string(free_relative_eigenvalue) + ": must be in [0, 1)");
+  }
+  if (!(free_tolerance_rad > 0.0) || !std::isfinite(free_tolerance_rad)) {
+    return fail("free_tolerance_rad = " + std::to_string(free_tolerance_rad) + ": must be finite and > 0");
   }
   return true;
 }

@@ -87,12 +87,7 @@ std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::ve
   std::vector<double> weights(inliers.size(), 1.0);
   *scale_mm = 0.0;
   if (kernel == RobustKernel::kNone || inliers.empty()) return weights;
-  std::vector<double> magnitudes(inliers.size());
-  for (std::size_t k = 0; k < inliers.size(); ++k) magnitudes[k] = std::abs(pairs[inliers[k]].residual);
-  const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
-  std::nth_element(magnitudes.begin(), middle, magnitudes.end());
-  // 1.4826 median |r|: the standard deviation of Gaussian residuals, robust to up to half of them being outliers.
-  const double scale = std::max(1.4826 * *middle, min_scale_mm);
+  const double scale = noise_scale(pairs, inliers, min_scale_mm);
   *scale_mm = scale;
   const double huber = 1.345 * scale, tukey = 4.685 * scale;
   for (std::size_t k = 0; k < inliers.size(); ++k) {
@@ -105,6 +100,19 @@ std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::ve
     }
   }
   return weights;
+}
+
+double noise_scale(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers, double min_scale_mm,
+                   bool along_normal) {
+  if (inliers.empty()) return 0.0;
+  std::vector<double> magnitudes(inliers.size());
+  for (std::size_t k = 0; k < inliers.size(); ++k) {
+    const Pair& p = pairs[inliers[k]];
+    magnitudes[k] = std::abs(along_normal ? p.normal.dot(p.q - p.target) : p.residual);
+  }
+  const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
+  std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+  return std::max(1.4826 * *middle, min_scale_mm);
 }
 
 double inlier_rms(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers) {

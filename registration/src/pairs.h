@@ -39,6 +39,12 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
                                    RobustKernel kernel, double min_scale_mm, double* scale_mm);
 
+// The inliers' noise: 1.4826 median |r|, the standard deviation of Gaussian residuals, robust to up to half of them
+// being outliers; at least min_scale_mm (0 without inliers). along_normal: of n . (q - target) instead of the
+// method's residual (point-to-point's Euclidean distance is mostly the reference's spacing, not noise).
+double noise_scale(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers, double min_scale_mm,
+                   bool along_normal = false);
+
 // RMS of the inliers' residuals (unweighted), mm.
 double inlier_rms(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers);
 

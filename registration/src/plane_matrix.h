@@ -3,16 +3,19 @@
 
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 #include "block_sum.h"
 #include "conform/registration/degeneracy.h"
 
 namespace conform::detail {
 
-struct PlaneSums {
+struct MomentSums {
   Matrix6d H = Matrix6d::Zero();
-  PlaneSums& operator+=(const PlaneSums& o) {
+  Matrix6d M = Matrix6d::Zero();
+  MomentSums& operator+=(const MomentSums& o) {
     H += o.H;
+    M += o.M;
     return *this;
   }
 };
@@ -27,9 +30,10 @@ struct PointSums {
   }
 };
 
-// point(i), normal(i) for i in [0, n): references to Eigen::Vector3d.
-template <typename PointAt, typename NormalAt>
-PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalAt&& normal) {
+// point(i), normal(i) for i in [0, n): references to Eigen::Vector3d; residual(i): its residual, mm (a null pointer:
+// no residual moment).
+template <typename PointAt, typename NormalAt, typename ResidualAt>
+PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalAt&& normal, ResidualAt&& residual) {
   PlaneNormalMatrix m;
   m.count = n;
   if (n == 0) return m;
@@ -39,14 +43,26 @@ PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalA
       block_sum(n, PointSums{}, [&](std::size_t i, PointSums& a) { a.sq += (point(i) - m.centre).squaredNorm(); }).sq;
   m.length_scale_mm = std::sqrt(sq / count);
   const double inv_length = m.length_scale_mm > 0.0 ? 1.0 / m.length_scale_mm : 0.0;
-  const PlaneSums sums = block_sum(n, PlaneSums{}, [&](std::size_t i, PlaneSums& a) {
+  constexpr bool kWithResiduals = !std::is_same_v<std::decay_t<ResidualAt>, std::nullptr_t>;
+  const MomentSums sums = block_sum(n, MomentSums{}, [&](std::size_t i, MomentSums& a) {
     Vector6d J;
     J.head<3>() = (point(i) - m.centre).cross(normal(i)) * inv_length;
     J.tail<3>() = normal(i);
     a.H.noalias() += J * J.transpose();
+    if constexpr (kWithResiduals) {
+      const double r = residual(i);
+      a.M.noalias() += (r * r) * J * J.transpose();
+    }
   });
   m.H = sums.H / count;
+  m.residual_moment = sums.M / count;
   return m;
+}
+
+// Without residuals: no residual moment.
+template <typename PointAt, typename NormalAt>
+PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalAt&& normal) {
+  return plane_normal_matrix_of(n, point, normal, nullptr);
 }
 
 }  // namespace conform::detail

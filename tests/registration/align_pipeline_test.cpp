@@ -134,6 +134,37 @@ TEST(AlignPipeline, NoOverlapDoesNotConvergeAndWritesNothing) {
   EXPECT_EQ(dir.listing(), "reference.ply\nscan.xyz\n");
 }
 
+// The verdict: the box part's scan against its reference is trusted (residuals at the scan's noise); the same scan
+// 4 % larger than its reference (a wrong part, or a unit slip no size check catches) converges somewhere, but its
+// residuals are far above the scan's noise: "no", and nothing is written.
+TEST(AlignPipeline, VerdictTrustsTheRightPartAndRefusesAWrongOne) {
+  test::TempDir dir;
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  write_mesh(dir.file("reference.ply"), part.reference);
+  Mesh scan, larger;
+  scan.vertices = part.scan;
+  for (const Eigen::Vector3d& p : part.scan) larger.vertices.push_back(part.centre + 1.04 * (p - part.centre));
+  write_cloud(dir.file("scan.xyz"), to_cloud(scan));
+  write_cloud(dir.file("larger.xyz"), to_cloud(larger));
+  AlignOptions options;
+  options.scan_path = dir.file("scan.xyz");
+  options.reference_path = dir.file("reference.ply");
+  const AlignResult good = run_align(options);
+  std::printf("  right part: %s, noise fit %.4f scan %.4f mm; 4%% larger: ", to_string(good.verdict.trust),
+              good.verdict.fit_noise_mm, good.verdict.scan_noise_mm);
+  EXPECT_EQ(good.verdict.trust, AlignTrust::kYes) << good.verdict.summary;
+  EXPECT_LT(good.verdict.noise_ratio, 2.0);
+  EXPECT_NEAR(good.verdict.scan_noise_mm, 0.02, 0.01);  // the part's 0.02 mm noise, edges and corners aside
+  options.scan_path = dir.file("larger.xyz");
+  options.out_transform_path = dir.file("T.txt");
+  const AlignResult bad = run_align(options);
+  std::printf("%s, noise fit %.4f scan %.4f mm\n", to_string(bad.verdict.trust), bad.verdict.fit_noise_mm,
+              bad.verdict.scan_noise_mm);
+  EXPECT_EQ(bad.verdict.trust, AlignTrust::kNo) << bad.verdict.summary;
+  EXPECT_GT(bad.verdict.noise_ratio, 20.0);
+  EXPECT_EQ(dir.listing(), "larger.xyz\nreference.ply\nscan.xyz\n");
+}
+
 TEST(AlignPipeline, BadInputIsReportedAsSuch) {
   test::TempDir dir;
   const test::TestPart part = test::make_test_part(test::PartKind::kBox);

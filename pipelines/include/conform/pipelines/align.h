@@ -3,8 +3,9 @@
 // coordinates dropped with a warning, duplicate scan points merged), thins the scan, estimates reference normals,
 // places the scan coarsely (none, principal axes, FPFH + RANSAC, or user point pairs; several starts ranked when the
 // method leaves a choice), refines with ICP (registration/icp.h) and reports the fit: T_ref_scan, convergence, RMS,
-// inlier fraction and the directions the scan does not constrain. Writes the transform and the aligned scan when
-// asked, only when ICP converged, whole or not at all.
+// inlier fraction, the pose's predicted standard deviations and the motions the scan does not constrain, and a
+// verdict: the residuals against the scan's own noise, the overlap, the constraint. Writes the transform and the
+// aligned scan when asked, only when the verdict is not "no", whole or not at all.
 
 #include <cstddef>
 #include <cstdint>
@@ -52,6 +53,15 @@ struct AlignOptions {
   // unit mix-up (an error suggesting --units); 0: no check.
   double max_size_ratio = 20.0;
   std::uint64_t seed = 1;  // FPFH's RANSAC
+  // A motion is held at the start when its predicted standard deviation (from the residuals' noise and the
+  // constraint the surface gives, registration/degeneracy.h) exceeds this along (mm) or about (deg) an axis.
+  double free_tolerance_mm = 0.02;
+  double free_tolerance_deg = 0.01;
+  // The fit's residual noise more than this many times the scan's own (plus the reference cloud's) noise: the pose
+  // is not consistent with the data (a wrong pose, or a part far from its reference): not trusted, exit 1. Above 2
+  // the verdict is "check". 0: no check. Loose because the local noise estimate misses sampling effects: a LiDAR
+  // pair (small_gicp) at its right pose has residuals 13 times its ring-wise local noise.
+  double max_noise_ratio = 20.0;
 
   std::string out_transform_path;  // T_ref_scan, 4x4 text (mm); empty: not written
   std::string out_aligned_path;    // the scan in the reference frame (mm), mesh or cloud as read; empty: not written
@@ -59,6 +69,27 @@ struct AlignOptions {
   ProgressFn progress;  // stages "read scan", "read reference", "normals", "coarse: ...", "icp", "write"
 
   bool IsValid(std::string* error) const;
+};
+
+// Whether to trust the pose, and the figures that say so.
+enum class AlignTrust {
+  kYes,    // converged, residuals near the noise, enough of the scan, every motion fixed
+  kCheck,  // usable with care: some motions held at the start, residuals a few times the noise, or little overlap
+  kNo,     // not converged, residuals far above the noise, or another start fits as well: no pose is returned
+};
+
+const char* to_string(AlignTrust trust);  // "yes", "check", "no"
+
+struct AlignVerdict {
+  AlignTrust trust = AlignTrust::kNo;
+  double scan_noise_mm = 0.0;        // the scan's own noise (registration/surface_noise.h)
+  double reference_noise_mm = 0.0;   // the reference cloud's (0 for a mesh)
+  double expected_noise_mm = 0.0;    // sqrt(scan^2 + reference^2): what the residuals should be at the right pose
+  double fit_noise_mm = 0.0;         // the residuals' robust std at the result (icp.degeneracy.noise_mm)
+  double noise_ratio = 0.0;          // fit / expected
+  double overlap = 0.0;              // the share of the scan within the maximum distance and kept (inlier fraction)
+  std::vector<std::string> reasons;  // why not kYes, one sentence each
+  std::string summary;               // one line: whether to trust the pose and why
 };
 
 struct AlignResult {
@@ -74,6 +105,7 @@ struct AlignResult {
   std::size_t scan_points_used = 0;                           // after merging duplicates and thinning
   std::size_t reference_points = 0;
   std::size_t reference_faces = 0;
+  AlignVerdict verdict;               // whether to trust icp.T_ref_scan; outputs are written unless kNo
   std::vector<std::string> warnings;  // dropped points, merged duplicates, ambiguous starts
   std::string transform_path;         // written; empty when not
   std::string aligned_path;
@@ -81,7 +113,7 @@ struct AlignResult {
 
 // Throws conform::Error for bad input: invalid options, unreadable or empty files, a pairs file that is not 3+
 // valid pairs, scan and reference of wildly different sizes (units), point-to-surface against a cloud, an output
-// that cannot be written. Not converging is not an error: see result.icp.converged and termination.
+// that cannot be written. Not converging, or a pose that is not consistent, is not an error: see result.verdict.
 AlignResult run_align(const AlignOptions& options);
 
 }  // namespace conform

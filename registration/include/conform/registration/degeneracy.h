@@ -1,11 +1,17 @@
 #pragma once
-// Does the scan constrain all six degrees of freedom? The eigenvalues of the point-to-plane ICP normal matrix
-// H = sum J_i^T J_i, J_i = [((q_i - c) x n_i) / L, n_i] (q_i scan points in the reference frame, n_i the reference
-// normals they are paired with, c their centroid, L their RMS distance from c, so that rotation and translation are
-// in comparable units), divided by the number of pairs. A direction whose eigenvalue is below a fraction of the
-// largest moves the scan without changing any point-to-plane distance: a tube cannot fix translation along and
-// rotation about its axis, a plane neither its in-plane translations nor the rotation about its normal.
+// Does the scan constrain all six degrees of freedom, and how well? The eigenvalues of the point-to-plane ICP normal
+// matrix H = sum J_i^T J_i, J_i = [((q_i - c) x n_i) / L, n_i] (q_i scan points in the reference frame, n_i the
+// reference normals they are paired with, c their centroid, L their RMS distance from c, so that rotation and
+// translation are in comparable units), divided by the number of pairs. A direction whose eigenvalue is below a
+// fraction of the largest moves the scan without changing any point-to-plane distance: a tube cannot fix translation
+// along and rotation about its axis, a plane neither its in-plane translations nor the rotation about its normal.
 // (Gelfand et al. 2003, "Geometrically stable sampling for the ICP algorithm"; Zhang et al. 2016.)
+//
+// How small is too small is a question of noise, not of a ratio: with N pairs and residual noise sigma, the
+// least-squares pose has covariance sigma^2 (N H)^-1, so a direction of eigenvalue lambda is known to within
+// sigma / sqrt(N lambda). A tube's axis (lambda ~1e-6 of the largest) is free; a ribbed plate's translation along
+// its ribs (2.7e-4 of the largest) is known to micrometres from 100k points. analyze_constraint() holds a motion
+// only when its predicted standard deviation exceeds a tolerance in mm or rad.
 
 #include <cstddef>
 #include <vector>
@@ -28,6 +34,21 @@ struct DegenerateDirection {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();       // rotation: the point of its axis closest to the centroid, mm
   double pitch_mm_per_rad = 0.0;                         // rotation: the translation along the axis that goes with it
   double relative_eigenvalue = 0.0;                      // its eigenvalue / the largest one
+  // Its predicted standard deviation (analyze_constraint; 0 from analyze_degeneracy): along the translation, mm, or
+  // about the rotation's axis, rad.
+  double std_mm = 0.0;
+  double std_rad = 0.0;
+};
+
+// One eigen-direction of H over the free degrees of freedom and how well the scan fixes it.
+struct ConstraintDirection {
+  // The motion, unit in the scaled coordinates: rotation (rad, about the centre) and translation (mm) per unit.
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double relative_eigenvalue = 0.0;
+  double std_rad = 0.0;  // predicted standard deviation of its rotation part (the reported variance)
+  double std_mm = 0.0;   // and of its translation part
+  bool held = false;     // the noise's std beyond a tolerance: ICP holds it at the start
 };
 
 // The normalised point-to-plane normal matrix of a set of pairs, in coordinates (rotation x L [mm], translation [mm]).
@@ -36,6 +57,9 @@ struct PlaneNormalMatrix {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // c, mm
   double length_scale_mm = 0.0;                      // L
   std::size_t count = 0;
+  // sum r^2 J^T J / count (mm^2) when the residuals r are known: the middle of the sandwich (Huber-White) covariance
+  // H^-1 M H^-1 / N, which sees residuals that are larger where the weak directions are measured. Zero: unknown.
+  Matrix6d residual_moment = Matrix6d::Zero();
 };
 
 struct DegeneracyReport {
@@ -49,6 +73,17 @@ struct DegeneracyReport {
   // Unit eigenvectors (6-vectors in the scaled coordinates) of the degenerate subspace, what ICP holds fixed.
   std::vector<Vector6d> degenerate_basis;
 
+  // --- from analyze_constraint (zero from analyze_degeneracy) ---
+  double noise_mm = 0.0;      // sigma, the residuals' robust standard deviation
+  double tolerance_mm = 0.0;  // as given
+  double tolerance_rad = 0.0;
+  // sigma^2 (N H)^-1 over the free degrees of freedom, in (rx, ry, rz [rad], tx, ty, tz [mm]): rotations about the
+  // reference frame's axes through `centre`, translations along them. Locked degrees of freedom have 0 rows and
+  // columns; a direction with no constraint at all gets a huge (not infinite) variance.
+  Matrix6d covariance = Matrix6d::Zero();
+  Vector6d std = Vector6d::Zero();                    // sqrt of its diagonal: rad, rad, rad, mm, mm, mm
+  std::vector<ConstraintDirection> eigen_directions;  // ascending eigenvalue, the free degrees of freedom only
+
   bool degenerate() const { return !directions.empty(); }
   // Smallest / largest eigenvalue (0 when there are none).
   double relative_smallest() const;
@@ -60,5 +95,16 @@ PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, con
 // The eigen-analysis of H over the free degrees of freedom, with the degenerate subspace split into pure
 // translations and rotations (axis through the point it passes closest to the centroid).
 DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof = {});
+
+// The same split, with the degenerate subspace chosen by predicted standard deviation: an eigen-direction u is held
+// when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than tolerance_mm along, or
+// tolerance_rad about, some axis, and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
+// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of that and the sandwich estimate
+// u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is V diag(variances) V^T.
+// Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
+// second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
+// over the N points the std assumes independent.
+DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
+                                    double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0);
 
 }  // namespace conform

@@ -85,10 +85,16 @@ struct IcpOptions {
 
   // --- degrees of freedom ---
   FreeDof free_dof;
-  // Directions of the point-to-plane normal matrix whose eigenvalue is below this fraction of the largest are
-  // degenerate (degeneracy.h); in (0, 1).
-  double degeneracy_threshold = 1e-3;
-  // Hold degenerate directions at their start value instead of letting noise move them (Zhang et al. 2016, "On
+  // A motion is free (degenerate, degeneracy.h) when its predicted standard deviation, sigma / sqrt(N lambda) from
+  // the residuals' noise sigma and the point-to-plane normal matrix, exceeds this along (mm) or about (rad) an
+  // axis. Above a few micrometres from 100k points on a weak feature; a tube's axis is orders of magnitude looser.
+  double free_tolerance_mm = 0.02;
+  double free_tolerance_rad = 1.7453292519943295e-4;  // 0.01 deg
+  // Directions whose eigenvalue is below this fraction of the largest are free whatever their predicted std: only
+  // second-order effects fix them (a tube's axis against a faceted mesh: ~1e-5), with systematic errors that do not
+  // average out. In [0, 1); the ribbed plate's weak but real direction is 2.7e-4.
+  double free_relative_eigenvalue = 1e-4;
+  // Hold free directions at their start value instead of letting noise move them (Zhang et al. 2016, "On
   // degeneracy of optimization-based state estimation problems"). They are reported either way.
   bool freeze_degenerate = true;
 

@@ -1,0 +1,81 @@
+#include "align_verdict.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "conform/registration/downsample.h"
+#include "conform/registration/surface_noise.h"
+
+namespace conform::detail {
+
+namespace {
+
+// Residuals up to this many times the expected noise are consistent: a Huber fit's robust std on Gaussian noise is
+// the noise itself, and real parts deviate from their reference by some noise's worth.
+constexpr double kConsistentRatio = 2.0;
+// Less than this share of the scan on the reference (and of what --overlap asks): check it.
+constexpr double kLowOverlapShare = 0.5;
+// The noise estimate's sample: enough for a stable median, cheap next to ICP.
+constexpr std::size_t kNoiseSamples = 2000;
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+  return buffer;
+}
+
+double noise_of(const std::vector<Eigen::Vector3d>& points) {
+  SurfaceNoiseOptions o;
+  o.samples = kNoiseSamples;
+  return estimate_surface_noise(points, o);
+}
+
+}  // namespace
+
+AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mesh& reference,
+                             const AlignOptions& options, const AlignResult& result) {
+  const IcpResult& icp = result.icp;
+  AlignVerdict v;
+  v.scan_noise_mm = noise_of(scan);
+  v.reference_noise_mm = reference.has_faces() ? 0.0 : noise_of(reference.vertices);
+  v.expected_noise_mm = std::hypot(v.scan_noise_mm, v.reference_noise_mm);
+  v.fit_noise_mm = icp.degeneracy.noise_mm;
+  // The ICP noise floor (1 um) keeps a noise-free pair from dividing by zero.
+  v.noise_ratio = v.fit_noise_mm / std::max(v.expected_noise_mm, 1e-3);
+  v.overlap = icp.inlier_fraction;
+  std::vector<std::string> no, check;
+  if (!icp.converged) no.push_back(std::string("ICP did not converge (") + to_string(icp.termination) + ")");
+  if (result.coarse.ranking.ambiguous) {
+    no.push_back("another coarse start fits almost as well at another pose (see starts)");
+  }
+  if (options.max_noise_ratio > 0.0 && v.noise_ratio > options.max_noise_ratio) {
+    no.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,
+                        v.noise_ratio, v.expected_noise_mm));
+  } else if (v.noise_ratio > kConsistentRatio) {
+    check.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,
+                           v.noise_ratio, v.expected_noise_mm));
+  }
+  if (v.overlap < kLowOverlapShare * options.overlap) {
+    check.push_back(format("only %.0f%% of the scan lies on the reference", 100.0 * v.overlap));
+  }
+  if (icp.degeneracy.degenerate()) {
+    check.push_back(std::to_string(icp.degeneracy.directions.size()) +
+                    " motion(s) the scan does not fix were held at the start pose");
+  }
+  v.trust = !no.empty() ? AlignTrust::kNo : !check.empty() ? AlignTrust::kCheck : AlignTrust::kYes;
+  v.reasons = no;
+  v.reasons.insert(v.reasons.end(), check.begin(), check.end());
+  const Vector6d& s = icp.degeneracy.std;
+  const double std_mm = s.tail<3>().maxCoeff(), std_deg = s.head<3>().maxCoeff() * 180.0 / M_PI;
+  if (v.trust == AlignTrust::kYes) {
+    v.summary = format("trust the pose: residuals %.3g mm at the scan's noise, predicted std <= %.2g mm, %.2g deg",
+                       v.fit_noise_mm, std_mm, std_deg);
+  } else {
+    v.summary =
+        std::string(v.trust == AlignTrust::kNo ? "do not trust the pose: " : "check the pose: ") + v.reasons.front();
+  }
+  return v;
+}
+
+}  // namespace conform::detail
