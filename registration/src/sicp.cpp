@@ -97,6 +97,8 @@ Eigen::Isometry3d coarse_fit(const Polyline& contour, const detail::ContourLocat
 
 }  // namespace
 
+bool icp_usable(const IcpResult& r) { return r.converged || r.termination == IcpTermination::kMaxIterations; }
+
 bool SicpOptions::IsValid(std::string* error) const {
   std::string why;
   const auto fail = [&](const std::string& message) {
@@ -114,7 +116,11 @@ bool SicpOptions::IsValid(std::string* error) const {
   if (!std::isfinite(max_distance_mm) || max_distance_mm <= 0.0) return fail("maximum distance must be > 0 mm");
   if (points_per_segment < 6) return fail("points per segment must be >= 6");
   if (coarse_points < 6) return fail("coarse points must be >= 6");
-  if (max_iterations < 1) return fail("ICP iterations must be >= 1");
+  if (max_iterations < 1 || max_iterations > 1000) return fail("ICP iterations must be in [1, 1000]");
+  if (neighbourhood_mm > 1000.0 || stability_mm > 1000.0 || coarse_max_distance_mm > 1000.0 || max_distance_mm > 1000.0)
+    return fail("neighbourhood, stability and pair distances must be <= 1000 mm");
+  if (points_per_segment > 100000 || stability_points_per_segment > 100000 || coarse_points > 1000000)
+    return fail("points per segment must be <= 1e5, coarse points <= 1e6");
   return true;
 }
 
@@ -143,9 +149,11 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   const Eigen::Isometry3d T = coarse_fit(contour, locator, thin, reference, surface, options, result.coarse);
   result.T_scan_nominal_rigid = surface ? T.inverse() : T;
   report(options.progress, "sicp: coarse", 1.0);
-  result.converged = result.coarse.converged;
+  // One rule for every ICP here (icp_usable): its iteration limit is the option max_iterations, and a fit that reaches
+  // it is kept; whether its pose is good is judged by its residuals against the noise (compensation/sicp_checks.h).
+  result.converged = icp_usable(result.coarse);
   result.termination =
-      result.coarse.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
+      result.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
   result.rms_mm = result.coarse.rms_mm;
   if (options.rigid_only) return result;
 
@@ -160,17 +168,15 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   fit_segments(selection, reference, surface, T, options, result.segments);
   std::vector<Eigen::Isometry3d> transforms;
   for (std::size_t k = 0; k < result.segments.size(); ++k) {
-    const SicpSegmentFit& f = result.segments[k];
-    // A fit stopped by the iteration limit is still closer than the coarse pose; a failed one is not.
-    const bool usable = f.converged || f.icp.termination == IcpTermination::kMaxIterations;
-    transforms.push_back(usable ? f.icp.T_ref_scan : T);
-    if (!f.converged) {
+    SicpSegmentFit& f = result.segments[k];
+    f.usable = f.neighbourhood_points + f.stability_points >= 6 && icp_usable(f.icp);
+    transforms.push_back(f.usable ? f.icp.T_ref_scan : T);
+    if (!f.usable) {
       result.warnings.push_back(
           "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
           " neighbourhood points, its ICP " +
           (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
-          (usable ? "; its last pose is kept and" : "; it starts from the rigid pose and") +
-          " the joint refinement ties it to its neighbours");
+          "; it starts from the rigid pose and the joint refinement ties it to its neighbours");
     }
   }
   report(options.progress, "sicp: segments", 1.0);

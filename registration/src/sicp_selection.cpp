@@ -50,7 +50,12 @@ SicpSelection ContourLocator::select_scan(const std::vector<Eigen::Vector3d>& sc
     const auto d2 = static_cast<double>(sq);
     if (i < 0 || d2 > sq_stable) continue;
     const double s = segmentation_.arc_length_mm[static_cast<std::size_t>(i)];
-    for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t core = segmentation_.core_at(s);
+    // Only the core's segment and its neighbours can reach s; each is tried once (2 or fewer segments repeat).
+    const std::size_t candidates[3] = {(core + count - 1) % count, core, (core + 1) % count};
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t k = candidates[c];
+      if ((c == 1 && k == candidates[0]) || (c == 2 && (k == candidates[0] || k == candidates[1]))) continue;
       if (!segmentation_.reaches(k, s)) continue;
       (d2 <= sq_near ? near : stable)[k].push_back(p);
     }
