@@ -24,7 +24,9 @@ nlohmann::json error_json(const TrajectoryError& e) {
           {"normal_mean_deg", e.normal_mean_deg},
           {"normal_max_deg", e.normal_max_deg},
           {"max_step_mm", e.max_step_mm},
-          {"truth_step_mm", e.truth_step_mm}};
+          {"truth_step_mm", e.truth_step_mm},
+          {"normal_step_max_deg", e.normal_step_max_deg},
+          {"truth_normal_step_max_deg", e.truth_normal_step_max_deg}};
 }
 
 class SicpCommand : public Command {
@@ -70,6 +72,8 @@ class SicpCommand : public Command {
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-offset", o.checks.max_offset_mm,
                  "Trajectory rows farther than this from the contour are untrusted, mm");
+    c.add_option("--normal-smoothing", o.normals.smooth_mm,
+                 "Tool normals averaged along the path over this arc length, mm; 0: not smoothed");
     c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate")
         ->check(CLI::IsMember({"scan", "rotate"}));
     c.add_option("--truth", options_.truth_path,
@@ -205,8 +209,10 @@ class SicpCommand : public Command {
       std::printf(
           "             row by row: mean %.4f mm, max %.4f mm (row %zu); tool normals mean %.3f deg, max %.3f deg\n",
           e.mean_mm, e.max_mm, e.worst_row + 1, e.normal_mean_deg, e.normal_max_deg);
-      std::printf("smoothness   largest row-to-row change of the correction %.4f mm (truth %.4f mm)\n", e.max_step_mm,
-                  e.truth_step_mm);
+      std::printf(
+          "smoothness   largest row-to-row change of the correction %.4f mm (truth %.4f mm), of the tool "
+          "normal %.3f deg (truth %.3f deg)\n",
+          e.max_step_mm, e.truth_step_mm, e.normal_step_max_deg, e.truth_normal_step_max_deg);
     }
     const SicpCheck& k = c.check;
     std::printf(

@@ -64,6 +64,7 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
     const KdTree tree(thin);
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
   }
+  smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
   r.check = check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks);
   r.trusted = r.check.trusted;
   return r;
