@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "conform/compensation/sicp_blend.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
@@ -25,12 +27,12 @@ std::string list(const std::vector<std::size_t>& v) {
 }
 
 // Per segment: blind, bare, outlier lists and a confidence = edge-data share * residual share (1 at <= 2x noise).
-void judge_segments(const SicpResult& r, const SicpCheckOptions& o, SicpCheck& c) {
+void judge_segments(const SicpResult& r, const SicpCheckOptions& o, double scan_noise_mm, SicpCheck& c) {
   std::vector<double> rms;
   for (const SicpSegmentFit& f : r.segments) {
     if (f.usable && f.neighbourhood_points >= o.min_edge_points) rms.push_back(f.rms_mm);
   }
-  c.noise_mm = r.segments.empty() || rms.empty() ? r.coarse.rms_mm : median(rms);
+  c.noise_mm = scan_noise_mm > 0.0 ? scan_noise_mm : (rms.empty() ? r.coarse.rms_mm : median(rms));
   const double noise = std::max(c.noise_mm, 1e-6);
   for (std::size_t k = 0; k < r.segments.size(); ++k) {
     const SicpSegmentFit& f = r.segments[k];
@@ -62,6 +64,31 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
 
 }  // namespace
 
+double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, double radius_mm,
+                           std::size_t samples) {
+  std::vector<double> rms;
+  std::vector<int> indices;
+  std::vector<float> sq;
+  const std::size_t stride = std::max<std::size_t>(1, scan.size() / std::max<std::size_t>(samples, 1));
+  for (std::size_t i = 0; i < scan.size(); i += stride) {
+    tree.radius(scan[i].cast<float>(), static_cast<float>(radius_mm), indices, sq);
+    if (indices.size() < 10) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int j : indices) mean += scan[static_cast<std::size_t>(j)];
+    mean /= static_cast<double>(indices.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (int j : indices) {
+      const Eigen::Vector3d d = scan[static_cast<std::size_t>(j)] - mean;
+      covariance += d * d.transpose();
+    }
+    const double k = static_cast<double>(indices.size());
+    // The smallest eigenvalue is the sum of squared plane residuals.
+    const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()(0);
+    rms.push_back(std::sqrt(std::max(smallest, 0.0) / (k - 3.0)));
+  }
+  return median(rms);
+}
+
 bool SicpCheckOptions::IsValid(std::string* error) const {
   const char* why = nullptr;
   if (!std::isfinite(outlier_ratio) || outlier_ratio <= 1.0)
@@ -76,13 +103,13 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
 }
 
 SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Trajectory& nominal,
-                          const Trajectory& compensated, const SicpCheckOptions& o) {
+                          const Trajectory& compensated, const SicpCheckOptions& o, double scan_noise_mm) {
   std::string why;
   if (!o.IsValid(&why)) throw Error("S-ICP checks: " + why);
   if (nominal.points.size() != compensated.points.size() || compensated.normals.size() != compensated.points.size())
     throw Error("S-ICP checks: the compensated trajectory's rows differ from the nominal one's");
   SicpCheck c;
-  judge_segments(r, o, c);
+  judge_segments(r, o, scan_noise_mm, c);
   const ContourSegmentation& g = r.segmentation;
   const bool by_segments = !r.segments.empty() && r.segments.size() == g.segments.size();
   const std::vector<double> s =

@@ -60,12 +60,12 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
       break;
     }
   }
-  if (options.normals.from_scan && !thin.empty()) {
-    const KdTree tree(thin);
+  const KdTree tree(thin);
+  if (options.normals.from_scan)
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
-  }
   smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
-  r.check = check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks);
+  r.check =
+      check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks, estimate_scan_noise(thin, tree));
   r.trusted = r.check.trusted;
   return r;
 }

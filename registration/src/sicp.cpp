@@ -65,7 +65,14 @@ void fit_segments(const detail::SicpSelection& selection, const IcpReference& re
     fit.neighbourhood_points = selection.neighbourhood_counts[static_cast<std::size_t>(k)];
     fit.stability_points = points.size() - fit.neighbourhood_points;
     if (points.size() < 6) continue;  // too little scan: the joint refinement ties it to its neighbours
-    fit.icp = icp(points, reference, T_start, icp_options(o, surface, o.max_distance_mm));
+    // Where the part bends away from the rigid pose by more than the fine pair distance, a first pass at the coarse
+    // distance brings the segment within reach (beyond the paper, whose segments start from the rigid pose).
+    Eigen::Isometry3d start = T_start;
+    if (o.coarse_segment_pass) {
+      const IcpResult first = icp(points, reference, T_start, icp_options(o, surface, o.coarse_max_distance_mm));
+      if (icp_usable(first)) start = first.T_ref_scan;
+    }
+    fit.icp = icp(points, reference, start, icp_options(o, surface, o.max_distance_mm));
     fit.converged = fit.icp.converged;
   }
 }

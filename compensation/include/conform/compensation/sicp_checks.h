@@ -1,7 +1,8 @@
 #pragma once
 // Can a Subdivision-ICP path be trusted? A robot cuts along it, so a plausible wrong path is the worst outcome. The
 // checks measure what the registration itself shows (beyond the paper, which reports no such figures):
-//   - noise: the median of the segments' residual RMS (most segments fit the part; their residual is the scan noise);
+//   - noise: measured on the scan alone (plane fits over a few mm, estimate_scan_noise), so that a registration that
+//     fits every segment badly cannot raise its own bar;
 //   - blind segments: fewer edge (neighbourhood) scan points than min_edge_points: where the edge is, nothing measured
 //     it, and the segment's pose is its neighbours' guess;
 //   - outlier segments: a residual RMS above outlier_ratio times the noise (the segment did not find the part);
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "conform/compensation/trajectory.h"
+#include "conform/core/nearest_neighbors.h"
 #include "conform/core/polyline.h"
 #include "conform/registration/sicp.h"
 
@@ -41,7 +43,7 @@ struct SicpRowReport {
 };
 
 struct SicpCheck {
-  double noise_mm = 0.0;  // estimated: the median segment residual RMS (the coarse RMS without segments)
+  double noise_mm = 0.0;                      // the scan's noise (or, without it, the median segment residual RMS)
   std::vector<std::size_t> blind_segments;    // fewer edge points than min_edge_points
   std::vector<std::size_t> bare_segments;     // no stability (surface) points either
   std::vector<std::size_t> outlier_segments;  // residual RMS > outlier_ratio * noise, or ICP not usable
@@ -55,10 +57,18 @@ struct SicpCheck {
   std::vector<std::string> warnings;
 };
 
+// The scan's noise, measured on the scan alone (not on the fit, which a wrong registration inflates): the median,
+// over up to `samples` scan points taken evenly, of the residual RMS of the plane fitted to the scan within radius_mm
+// of each (at least 10 points), scaled by sqrt(k / (k - 3)) for the fit's three degrees of freedom. The median leaves
+// out the planes that straddle an edge. 0 when no sample has enough points. tree indexes scan.
+double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, double radius_mm = 3.0,
+                           std::size_t samples = 400);
+
 // registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
 // their distance from the contour only). nominal, compensated: same rows. Throws conform::Error for invalid options
 // or trajectories of different lengths.
+// scan_noise_mm: estimate_scan_noise of the scan the registration used (0: the median segment RMS stands in).
 SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& registration, const Trajectory& nominal,
-                          const Trajectory& compensated, const SicpCheckOptions& options);
+                          const Trajectory& compensated, const SicpCheckOptions& options, double scan_noise_mm = 0.0);
 
 }  // namespace conform

@@ -22,8 +22,9 @@ struct SicpJointOptions {
   // Weight of a neighbour's disagreement against the data: the penalty of a junction counts as much as this many
   // times the data terms of one segment when its disagreement equals a data residual. > 0.
   // Too strong and the segments cannot follow a stretch along a straight edge (which no segment sees on its own);
-  // too weak and a segment's slide along a gently curved edge is left to noise. 0.1 suits both generated panels.
-  double weight = 0.1;
+  // too weak and a segment's slide along a gently curved edge is left to noise. 0.01 from the seed sweep in
+  // docs/sicp.md (plate, nose cone, harder oval and cut-out): 0.1 dragged corner segments off by up to 1.1 mm.
+  double weight = 0.01;
   std::size_t points_per_overlap = 8;    // shared overlap points per junction (even along the overlap), >= 1
   std::size_t points_per_segment = 120;  // data points per segment, at most (even stride over the segment's ICP points)
   int rounds = 2;                        // pairing + solve rounds, >= 1
