@@ -55,8 +55,9 @@ double pair_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometr
 }
 
 // The segment ICPs, in parallel (each is independent, so the result does not depend on the thread count).
-void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
-                  const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
+void fit_segments_from(const detail::SicpSelection& selection, const IcpReference& reference,
+                       const std::vector<Eigen::Isometry3d>& starts, const SicpOptions& o,
+                       std::vector<SicpSegmentFit>& fits, bool surface = true) {
   const auto count = static_cast<std::ptrdiff_t>(fits.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
@@ -67,6 +68,7 @@ void fit_segments(const detail::SicpSelection& selection, const IcpReference& re
     if (points.size() < 6) continue;  // too little scan: the joint refinement ties it to its neighbours
     // Where the part bends away from the rigid pose by more than the fine pair distance, a first pass at the coarse
     // distance brings the segment within reach (beyond the paper, whose segments start from the rigid pose).
+    const Eigen::Isometry3d& T_start = starts[static_cast<std::size_t>(k)];
     Eigen::Isometry3d start = T_start;
     if (o.coarse_segment_pass) {
       const IcpResult first = icp(points, reference, T_start, icp_options(o, surface, o.coarse_max_distance_mm));
@@ -75,6 +77,11 @@ void fit_segments(const detail::SicpSelection& selection, const IcpReference& re
     fit.icp = icp(points, reference, start, icp_options(o, surface, o.max_distance_mm));
     fit.converged = fit.icp.converged;
   }
+}
+
+void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
+                  const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
+  fit_segments_from(selection, reference, std::vector<Eigen::Isometry3d>(fits.size(), T_start), o, fits, surface);
 }
 
 // The rigid ICP of the contour's neighbourhood: first with the coarse pair distance over a neighbourhood widened by
@@ -169,10 +176,23 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   // all are plenty (a segment's share of the scan is about its share of the contour).
   const std::size_t candidates =
       4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
-  const detail::SicpSelection selection = surface ? locator.select_scan(stride_downsample(thin, candidates), T, options)
-                                                  : locator.select_contour(contour, options);
+  const std::vector<Eigen::Vector3d> scan_candidates = stride_downsample(thin, candidates);
+  detail::SicpSelection selection =
+      surface ? locator.select_scan(scan_candidates, T, options) : locator.select_contour(contour, options);
   result.segments.resize(result.segmentation.segments.size());
   fit_segments(selection, reference, surface, T, options, result.segments);
+  if (surface && options.reselect) {
+    // The segments' own poses select their scan again (the rigid pose may have put the edge out of reach), and the
+    // segment ICPs run once more from those poses (fine distance only).
+    std::vector<Eigen::Isometry3d> first;
+    for (const SicpSegmentFit& f : result.segments) first.push_back(icp_usable(f.icp) ? f.icp.T_ref_scan : T);
+    selection = locator.reselect_scan(scan_candidates, T, first, options);
+    std::vector<SicpSegmentFit> again(result.segments.size());
+    SicpOptions fine = options;
+    fine.coarse_segment_pass = false;
+    fit_segments_from(selection, reference, first, fine, again);
+    result.segments = std::move(again);
+  }
   std::vector<Eigen::Isometry3d> transforms;
   for (std::size_t k = 0; k < result.segments.size(); ++k) {
     SicpSegmentFit& f = result.segments[k];

@@ -43,6 +43,7 @@ struct SicpOptions {
   std::size_t stability_points_per_segment = 50;  // stability points per segment, at most
   int max_iterations = 30;  // per ICP (coarse and segments alike), in [1, 1000]; reaching it is no failure
   bool coarse_segment_pass = true;  // each segment's ICP first at coarse_max_distance_mm, then at max_distance_mm
+  bool reselect = true;  // with a surface: each segment's scan selected again at its own pose, its ICP run again
   bool joint_refinement = true;
   SicpJointOptions joint;
   bool rigid_only = false;  // stop after the coarse rigid ICP (the rigid and projection models need nothing more)
