@@ -62,6 +62,9 @@ class SicpCommand : public Command {
     c.add_flag("--no-joint", no_joint_, "Segments registered independently (the paper), no joint refinement");
     c.add_option("--joint-weight", o.sicp.joint.weight,
                  "Weight of neighbouring segments' disagreement in the joint refinement");
+    c.add_option("--joint-damping", o.sicp.joint.damping,
+                 "Weight of each segment's slide along the edge in the joint refinement (holds a drift the data leave "
+                 "free)");
     c.add_option("--max-iterations", o.sicp.max_iterations,
                  "Iteration limit of every ICP (rigid and segments); a fit that reaches it is kept and judged by its "
                  "residuals")

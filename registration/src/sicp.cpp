@@ -13,6 +13,9 @@
 namespace conform {
 namespace {
 
+// A segment's fine ICP with at least this share of its points paired needs no coarse pass first.
+constexpr double kWellPaired = 0.9;
+
 IcpOptions icp_options(const SicpOptions& o, bool surface, double max_distance_mm) {
   IcpOptions icp;
   icp.method = surface ? IcpMethod::kPointToSurface : IcpMethod::kPointToPoint;
@@ -66,15 +69,19 @@ void fit_segments_from(const detail::SicpSelection& selection, const IcpReferenc
     fit.neighbourhood_points = selection.neighbourhood_counts[static_cast<std::size_t>(k)];
     fit.stability_points = points.size() - fit.neighbourhood_points;
     if (points.size() < 6) continue;  // too little scan: the joint refinement ties it to its neighbours
-    // Where the part bends away from the rigid pose by more than the fine pair distance, a first pass at the coarse
-    // distance brings the segment within reach (beyond the paper, whose segments start from the rigid pose).
     const Eigen::Isometry3d& T_start = starts[static_cast<std::size_t>(k)];
-    Eigen::Isometry3d start = T_start;
-    if (o.coarse_segment_pass) {
+    fit.icp = icp(points, reference, T_start, icp_options(o, surface, o.max_distance_mm));
+    // Where the part bends away from the start by more than the fine pair distance, many points find no pair: a
+    // first pass at the coarse distance brings the segment within reach (beyond the paper, whose segments start from
+    // the rigid pose). Only then: on a gently curved edge the wide pass can slide a segment that needed nothing.
+    if (o.coarse_segment_pass && (!icp_usable(fit.icp) || fit.icp.inlier_fraction < kWellPaired)) {
       const IcpResult first = icp(points, reference, T_start, icp_options(o, surface, o.coarse_max_distance_mm));
-      if (icp_usable(first)) start = first.T_ref_scan;
+      if (icp_usable(first)) {
+        const IcpResult second = icp(points, reference, first.T_ref_scan, icp_options(o, surface, o.max_distance_mm));
+        if (icp_usable(second) && (!icp_usable(fit.icp) || second.inlier_fraction > fit.icp.inlier_fraction))
+          fit.icp = second;
+      }
     }
-    fit.icp = icp(points, reference, start, icp_options(o, surface, o.max_distance_mm));
     fit.converged = fit.icp.converged;
   }
 }
@@ -82,6 +89,19 @@ void fit_segments_from(const detail::SicpSelection& selection, const IcpReferenc
 void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
                   const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
   fit_segments_from(selection, reference, std::vector<Eigen::Isometry3d>(fits.size(), T_start), o, fits, surface);
+}
+
+// The contour's chord over segment k's core (nominal frame, unit; zero when degenerate).
+Eigen::Vector3d edge_direction(const Polyline& contour, const ContourSegmentation& g, std::size_t k) {
+  const auto point_at = [&](double s) {
+    if (g.closed) s = std::fmod(std::fmod(s, g.length_mm) + g.length_mm, g.length_mm);
+    const auto it = std::lower_bound(g.arc_length_mm.begin(), g.arc_length_mm.end(), s);
+    return contour.points[std::min<std::size_t>(static_cast<std::size_t>(it - g.arc_length_mm.begin()),
+                                                contour.points.size() - 1)];
+  };
+  const ContourSegment& c = g.segments[k];
+  const Eigen::Vector3d chord = point_at(c.start_mm + c.length_mm) - point_at(c.start_mm);
+  return chord.norm() > 1e-9 ? Eigen::Vector3d(chord.normalized()) : Eigen::Vector3d::Zero();
 }
 
 // The rigid ICP of the contour's neighbourhood: first with the coarse pair distance over a neighbourhood widened by
@@ -213,6 +233,7 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
     std::vector<SicpJointSegment> data(transforms.size());
     for (std::size_t k = 0; k < data.size(); ++k) {
       data[k].points = stride_downsample(selection.segment_points[k], options.joint.points_per_segment);
+      data[k].along = edge_direction(contour, result.segmentation, k);
     }
     result.joint = refine_segments_jointly(data, locator.junctions(options.joint.points_per_overlap), reference,
                                            options.max_distance_mm, options.joint, transforms);
