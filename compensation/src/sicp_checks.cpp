@@ -64,15 +64,15 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
 
 }  // namespace
 
-double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, double radius_mm,
+double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours,
                            std::size_t samples) {
   std::vector<double> rms;
   std::vector<int> indices;
   std::vector<float> sq;
   const std::size_t stride = std::max<std::size_t>(1, scan.size() / std::max<std::size_t>(samples, 1));
   for (std::size_t i = 0; i < scan.size(); i += stride) {
-    tree.radius(scan[i].cast<float>(), static_cast<float>(radius_mm), indices, sq);
-    if (indices.size() < 10) continue;
+    tree.knn(scan[i].cast<float>(), neighbours, indices, sq);
+    if (indices.size() < 4) continue;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (int j : indices) mean += scan[static_cast<std::size_t>(j)];
     mean /= static_cast<double>(indices.size());

@@ -58,10 +58,10 @@ struct SicpCheck {
 };
 
 // The scan's noise, measured on the scan alone (not on the fit, which a wrong registration inflates): the median,
-// over up to `samples` scan points taken evenly, of the residual RMS of the plane fitted to the scan within radius_mm
-// of each (at least 10 points), scaled by sqrt(k / (k - 3)) for the fit's three degrees of freedom. The median leaves
-// out the planes that straddle an edge. 0 when no sample has enough points. tree indexes scan.
-double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, double radius_mm = 3.0,
+// over up to `samples` scan points taken evenly, of the residual RMS of the plane fitted to each one's `neighbours`
+// nearest scan points, scaled by sqrt(k / (k - 3)) for the fit's three degrees of freedom (k points). The median
+// leaves out the planes that straddle an edge. 0 for fewer than 4 points. tree indexes scan.
+double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours = 20,
                            std::size_t samples = 400);
 
 // registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
