@@ -38,7 +38,7 @@ class SicpCommandTest : public ::testing::Test {
 
 TEST_F(SicpCommandTest, JsonAndTrajectory) {
   const auto r = sicp({"--surface", dir_.file("p.nominal.ply"), "--truth", dir_.file("p.truth.csv"), "--out-trajectory",
-                       dir_.file("out.csv"), "--json"});
+                       dir_.file("out.csv"), "--out-rows", dir_.file("rows.csv"), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["converged"], true);
@@ -52,6 +52,10 @@ TEST_F(SicpCommandTest, JsonAndTrajectory) {
   EXPECT_LT(j["error"]["path_mean_mm"].get<double>(), 0.1);  // noise 0.05 mm; measured ~0.03
   EXPECT_EQ(rows(dir_.file("out.csv")), rows(dir_.file("p.trajectory.csv")));
   EXPECT_EQ(test::read_bytes(dir_.file("out.csv")).substr(0, 24), "x_mm,y_mm,z_mm,nx,ny,nz\n");
+  // Per row: the correction across the edge, along the tool axis and along the path, and the row's confidence.
+  EXPECT_EQ(rows(dir_.file("rows.csv")), rows(dir_.file("p.trajectory.csv")));
+  EXPECT_EQ(test::read_bytes(dir_.file("rows.csv")).substr(0, 64),
+            "row,across_mm,axis_mm,along_mm,confidence,contour_distance_mm\n1,");
   const auto again = sicp({"--surface", dir_.file("p.nominal.ply"), "--out-trajectory", dir_.file("again.csv")});
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(test::read_bytes(dir_.file("again.csv")), test::read_bytes(dir_.file("out.csv")));
