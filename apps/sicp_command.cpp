@@ -77,7 +77,7 @@ class SicpCommand : public Command {
                  "Trajectory rows farther than this from the contour are untrusted, mm");
     c.add_option("--normal-smoothing", o.normals.smooth_mm,
                  "Tool normals averaged along the path over this arc length, mm; 0: not smoothed");
-    c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate")
+    c.add_option("--normals", normals_, "Tool normals: rotate (the nominal ones with the blended transforms) or scan (plane fitted around each point)")
         ->check(CLI::IsMember({"scan", "rotate"}));
     c.add_option("--truth", options_.truth_path,
                  "Ground-truth trajectory (same columns and rows): report the error against it");
@@ -230,7 +230,7 @@ class SicpCommand : public Command {
   SicpJobOptions options_;
   std::string model_ = "sicp";
   std::string fit_ = "parabola";
-  std::string normals_ = "scan";
+  std::string normals_ = options_.compensation.normals.from_scan ? "scan" : "rotate";
   bool no_joint_ = false;
   bool json_ = false;
   bool quiet_ = false;

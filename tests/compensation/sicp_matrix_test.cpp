@@ -63,6 +63,8 @@ bool meets_bar_or_refused(const MatrixRun& r, const std::string& what) {
   EXPECT_LE(r.error.path_mean_mm, 0.2) << what;
   EXPECT_LE(r.error.path_max_mm, 0.6) << what;
   EXPECT_LE(r.error.max_step_mm, 0.2) << what;
+  // Tool normals: consecutive rows turn by at most a tenth of a degree more than the truth's.
+  EXPECT_LE(r.error.normal_step_max_deg, r.error.truth_normal_step_max_deg + 0.1) << what;
   EXPECT_LE(r.error.path_mean_mm, 0.25 * r.rigid.path_mean_mm) << what << " rigid " << r.rigid.path_mean_mm;
   return true;
 }
