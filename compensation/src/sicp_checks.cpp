@@ -49,11 +49,13 @@ void judge_segments(const SicpResult& r, const SicpCheckOptions& o, double scan_
 }
 
 // The correction of row i split along the compensated row's tool axis, path direction and the cross direction.
-void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_t i, SicpRowReport& row) {
+void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_t i, bool closed, SicpRowReport& row) {
   const std::size_t n = t.points.size();
   const Eigen::Vector3d d = t.points[i] - nominal.points[i];
   const Eigen::Vector3d& axis = t.normals[i];
-  Eigen::Vector3d tangent = t.points[std::min(i + 1, n - 1)] - t.points[i > 0 ? i - 1 : 0];
+  const std::size_t next = i + 1 < n ? i + 1 : (closed ? 0 : n - 1);
+  const std::size_t previous = i > 0 ? i - 1 : (closed ? n - 1 : 0);
+  Eigen::Vector3d tangent = t.points[next] - t.points[previous];
   tangent -= tangent.dot(axis) * axis;
   row.axis_mm = d.dot(axis);
   if (tangent.norm() < 1e-12) return;
@@ -116,10 +118,18 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       by_segments ? locate_on_contour(contour, g.arc_length_mm, nominal.points) : std::vector<double>();
   const KdTree tree(contour.points);
   c.rows.resize(nominal.points.size());
+  // A closed path (its ends within three median row spacings) wraps for the path direction at its ends.
+  bool closed = false;
+  if (nominal.points.size() >= 3) {
+    std::vector<double> spacing;
+    for (std::size_t i = 1; i < nominal.points.size(); ++i)
+      spacing.push_back((nominal.points[i] - nominal.points[i - 1]).norm());
+    closed = (nominal.points.back() - nominal.points.front()).norm() <= 3.0 * median(spacing);
+  }
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
-    split_correction(nominal, compensated, i, row);
+    split_correction(nominal, compensated, i, closed, row);
     float sq = 0.0f;
     tree.nearest(nominal.points[i].cast<float>(), &sq);
     row.contour_distance_mm = std::sqrt(static_cast<double>(sq));
