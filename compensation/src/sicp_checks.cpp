@@ -64,6 +64,30 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
   row.across_mm = d.dot(axis.cross(tangent));
 }
 
+// The warnings of blind, bare and outlier segments and far rows, each saying what to change.
+void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c) {
+  if (!c.blind_segments.empty())
+    c.warnings.push_back(
+        std::to_string(c.blind_segments.size()) + " of " + std::to_string(segments) + " segments have fewer than " +
+        std::to_string(o.min_edge_points) + " scan points near the edge (segments " + list(c.blind_segments) +
+        "): their rows are guessed from the neighbours; scan the edge there (or accept guessed rows with a lower "
+        "minimum of edge points)");
+  if (!c.bare_segments.empty())
+    c.warnings.push_back(std::to_string(c.bare_segments.size()) + " segments have no scan data at all (segments " +
+                         list(c.bare_segments) + ")");
+  if (!c.outlier_segments.empty())
+    c.warnings.push_back(std::to_string(c.outlier_segments.size()) +
+                         " segments fit the scan far worse than the others " + "(RMS above " +
+                         format_fixed(o.outlier_ratio, 1) + " x the noise " + format_fixed(c.noise_mm, 4) +
+                         " mm; segments " + list(c.outlier_segments) +
+                         "): check the scan there (spurious points, fixtures) or the nominal surface");
+  if (c.far_rows > 0)
+    c.warnings.push_back(std::to_string(c.far_rows) + " trajectory rows lie more than " +
+                         format_fixed(o.max_offset_mm, 1) +
+                         " mm from the contour: the segments describe the part near the contour only; check that the "
+                         "trajectory and the contour are in the same frame and units");
+}
+
 }  // namespace
 
 double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours,
@@ -142,27 +166,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
     c.min_confidence = std::min(c.min_confidence, row.confidence);
   }
-  if (!c.blind_segments.empty())
-    c.warnings.push_back(
-        std::to_string(c.blind_segments.size()) + " of " + std::to_string(r.segments.size()) +
-        " segments have fewer than " + std::to_string(o.min_edge_points) + " scan points near the edge (segments " +
-        list(c.blind_segments) +
-        "): their rows are guessed from the neighbours; scan the edge there (or accept guessed rows with a lower "
-        "minimum of edge points)");
-  if (!c.bare_segments.empty())
-    c.warnings.push_back(std::to_string(c.bare_segments.size()) + " segments have no scan data at all (segments " +
-                         list(c.bare_segments) + ")");
-  if (!c.outlier_segments.empty())
-    c.warnings.push_back(std::to_string(c.outlier_segments.size()) +
-                         " segments fit the scan far worse than the others " + "(RMS above " +
-                         format_fixed(o.outlier_ratio, 1) + " x the noise " + format_fixed(c.noise_mm, 4) +
-                         " mm; segments " + list(c.outlier_segments) +
-                         "): check the scan there (spurious points, fixtures) or the nominal surface");
-  if (c.far_rows > 0)
-    c.warnings.push_back(std::to_string(c.far_rows) + " trajectory rows lie more than " +
-                         format_fixed(o.max_offset_mm, 1) +
-                         " mm from the contour: the segments describe the part near the contour only; check that the "
-                         "trajectory and the contour are in the same frame and units");
+  add_warnings(o, r.segments.size(), c);
   c.trusted = r.converged && c.untrusted_rows == 0;
   if (!r.converged)
     c.reason = "the registration did not converge (" + r.termination + ")";

@@ -129,6 +129,70 @@ Eigen::Isometry3d coarse_fit(const Polyline& contour, const detail::ContourLocat
   return T;
 }
 
+// The segment ICPs (and, with a surface, the reselection at their own poses and the second round); fills
+// result.segments and their starting transforms for the joint refinement (nominal <- scan with a surface); returns
+// the selection the transforms were fitted to.
+detail::SicpSelection register_segments(const Polyline& contour, const detail::ContourLocator& locator,
+                                        const std::vector<Eigen::Vector3d>& thin, const IcpReference& reference,
+                                        bool surface, const Eigen::Isometry3d& T, const SicpOptions& options,
+                                        SicpResult& result, std::vector<Eigen::Isometry3d>& transforms) {
+  // Each segment keeps at most points_per_segment + stability_points_per_segment; four times that many candidates in
+  // all are plenty (a segment's share of the scan is about its share of the contour).
+  const std::size_t candidates =
+      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
+  const std::vector<Eigen::Vector3d> scan_candidates = stride_downsample(thin, candidates);
+  detail::SicpSelection selection =
+      surface ? locator.select_scan(scan_candidates, T, options) : locator.select_contour(contour, options);
+  result.segments.resize(result.segmentation.segments.size());
+  fit_segments(selection, reference, surface, T, options, result.segments);
+  if (surface && options.reselect) {
+    // The segments' own poses select their scan again (the rigid pose may have put the edge out of reach), and the
+    // segment ICPs run once more from those poses (fine distance only).
+    std::vector<Eigen::Isometry3d> first;
+    for (const SicpSegmentFit& f : result.segments) first.push_back(icp_usable(f.icp) ? f.icp.T_ref_scan : T);
+    selection = locator.reselect_scan(scan_candidates, T, first, options);
+    std::vector<SicpSegmentFit> again(result.segments.size());
+    SicpOptions fine = options;
+    fine.coarse_segment_pass = false;
+    fit_segments_from(selection, reference, first, fine, again);
+    result.segments = std::move(again);
+  }
+  for (std::size_t k = 0; k < result.segments.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    f.usable = f.neighbourhood_points + f.stability_points >= 6 && icp_usable(f.icp);
+    transforms.push_back(f.usable ? f.icp.T_ref_scan : T);
+    if (!f.usable) {
+      result.warnings.push_back(
+          "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
+          " neighbourhood points, its ICP " +
+          (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
+          "; it starts from the rigid pose and the joint refinement ties it to its neighbours");
+    }
+  }
+  return selection;
+}
+
+// Every segment's final transform (scan <- nominal) and the RMS of its pairs there; the overall RMS.
+void final_residuals(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
+                     const std::vector<Eigen::Isometry3d>& transforms, const SicpOptions& options, SicpResult& result) {
+  double sum_sq = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < transforms.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    if (surface) {
+      f.T_scan_nominal = transforms[k].inverse();
+      f.rms_mm =
+          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
+    } else {
+      f.T_scan_nominal = transforms[k];
+      f.rms_mm = f.icp.rms_mm;
+      sum_sq += f.rms_mm * f.rms_mm * static_cast<double>(f.icp.inliers);
+      count += f.icp.inliers;
+    }
+  }
+  result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+}
+
 }  // namespace
 
 bool icp_usable(const IcpResult& r) { return r.converged || r.termination == IcpTermination::kMaxIterations; }
@@ -192,40 +256,9 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   if (options.rigid_only) return result;
 
   report(options.progress, "sicp: segments", 0.0);
-  // Each segment keeps at most points_per_segment + stability_points_per_segment; four times that many candidates in
-  // all are plenty (a segment's share of the scan is about its share of the contour).
-  const std::size_t candidates =
-      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
-  const std::vector<Eigen::Vector3d> scan_candidates = stride_downsample(thin, candidates);
-  detail::SicpSelection selection =
-      surface ? locator.select_scan(scan_candidates, T, options) : locator.select_contour(contour, options);
-  result.segments.resize(result.segmentation.segments.size());
-  fit_segments(selection, reference, surface, T, options, result.segments);
-  if (surface && options.reselect) {
-    // The segments' own poses select their scan again (the rigid pose may have put the edge out of reach), and the
-    // segment ICPs run once more from those poses (fine distance only).
-    std::vector<Eigen::Isometry3d> first;
-    for (const SicpSegmentFit& f : result.segments) first.push_back(icp_usable(f.icp) ? f.icp.T_ref_scan : T);
-    selection = locator.reselect_scan(scan_candidates, T, first, options);
-    std::vector<SicpSegmentFit> again(result.segments.size());
-    SicpOptions fine = options;
-    fine.coarse_segment_pass = false;
-    fit_segments_from(selection, reference, first, fine, again);
-    result.segments = std::move(again);
-  }
   std::vector<Eigen::Isometry3d> transforms;
-  for (std::size_t k = 0; k < result.segments.size(); ++k) {
-    SicpSegmentFit& f = result.segments[k];
-    f.usable = f.neighbourhood_points + f.stability_points >= 6 && icp_usable(f.icp);
-    transforms.push_back(f.usable ? f.icp.T_ref_scan : T);
-    if (!f.usable) {
-      result.warnings.push_back(
-          "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
-          " neighbourhood points, its ICP " +
-          (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
-          "; it starts from the rigid pose and the joint refinement ties it to its neighbours");
-    }
-  }
+  const detail::SicpSelection selection =
+      register_segments(contour, locator, thin, reference, surface, T, options, result, transforms);
   report(options.progress, "sicp: segments", 1.0);
 
   if (surface && options.joint_refinement) {
@@ -246,22 +279,7 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
     result.joint.termination = surface ? "off" : "needs a nominal surface";
   }
 
-  double sum_sq = 0.0;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < transforms.size(); ++k) {
-    SicpSegmentFit& f = result.segments[k];
-    if (surface) {
-      f.T_scan_nominal = transforms[k].inverse();
-      f.rms_mm =
-          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
-    } else {
-      f.T_scan_nominal = transforms[k];
-      f.rms_mm = f.icp.rms_mm;
-      sum_sq += f.rms_mm * f.rms_mm * static_cast<double>(f.icp.inliers);
-      count += f.icp.inliers;
-    }
-  }
-  result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+  final_residuals(selection, reference, surface, transforms, options, result);
   return result;
 }
 
