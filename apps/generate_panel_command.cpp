@@ -27,8 +27,7 @@ class GeneratePanelCommand : public Command {
     } else {
       configure_nosecone(c);
     }
-    c.add_option("--band", o_.band_mm,
-                 "Nominal surface and scan: the panel within this of the opening, mm");
+    c.add_option("--band", o_.band_mm, "Nominal surface and scan: the panel within this of the opening, mm");
     c.add_option("--thickness", o_.thickness_mm, "Depth of the opening's flank (the panel's edge), mm");
     c.add_option("--surface-edge", o_.surface_edge_mm, "Edge length of the nominal surface mesh, mm");
     c.add_option("--contour-spacing", o_.contour_spacing_mm, "Between contour points, mm");
@@ -36,12 +35,15 @@ class GeneratePanelCommand : public Command {
     c.add_option("--scan-points", o_.scan_points,
                  "Scan points drawn before the missing parts are cut; default 300000 (nosecone), 120000 (plate)");
     c.add_option("--noise", o_.noise_mm, "Gaussian noise along the surface normal, sigma, mm");
-    c.add_option("--missing", o_.missing_fraction,
-                 "Share of the contour's length with no scan near it, in [0, 0.9]");
+    c.add_option("--missing", o_.missing_fraction, "Share of the contour's length with no scan near it, in [0, 0.9]");
     c.add_option("--missing-patches", o_.missing_patches, "Arcs the missing share is split into");
     c.add_option("--missing-depth", o_.missing_depth_mm, "How far from the edge a missing arc reaches, mm");
     c.add_option("--holes", o_.holes, "Missing discs of the scan at seeded places");
     c.add_option("--hole-radius", o_.hole_radius_mm, "Radius of those discs, mm");
+    c.add_option("--field", o_.field_mm,
+                 "Smooth seeded non-rigid field: at most this along the surface normal (z), half of it in the plane, "
+                 "mm");
+    c.add_option("--field-wavelength", o_.field_wavelength_mm, "The field's shortest wavelength, mm");
     c.add_option("--seed", o_.seed, "Seed of the scan's sampling, noise and missing parts");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -50,6 +52,7 @@ class GeneratePanelCommand : public Command {
   int run() override {
     GeneratePanelOptions options;
     options.panel = o_;
+    options.panel.opening = opening_ == "rectangle" ? PlateOpening::kRoundedRectangle : PlateOpening::kEllipse;
     options.out_path = out_;
     options.panel.progress = stderr_progress(quiet_);
     const GeneratePanelResult r = run_generate_panel(options);
@@ -90,14 +93,16 @@ class GeneratePanelCommand : public Command {
     c.add_option("--sag", o_.sag_mm, "Sag at mid-span between the clamps, mm");
     c.add_option("--bend", o_.bend_mm, "Bending across the porthole, mm");
     c.add_option("--twist", o_.twist_mm, "Twist, mm");
+    c.add_option("--opening", opening_, "The opening: ellipse (porthole) or rectangle (corners --corner-radius)")
+        ->check(CLI::IsMember({"ellipse", "rectangle"}));
+    c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the rectangle's corners, mm (0: sharp)");
   }
 
   void configure_nosecone(CLI::App& c) {
     c.description("Synthetic barrel section with a cockpit-like opening with corners, deformed, scanned around it");
     c.add_option("--radius", o_.barrel_radius_mm, "Barrel radius, mm");
     c.add_option("--window-height", o_.window_height_mm, "Opening along the axis, mm");
-    c.add_option("--window-bottom", o_.window_bottom_mm,
-                 "Opening's width (arc length) at its rear edge, mm");
+    c.add_option("--window-bottom", o_.window_bottom_mm, "Opening's width (arc length) at its rear edge, mm");
     c.add_option("--window-top", o_.window_top_mm, "Opening's width at its front edge, mm");
     c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the opening's corners, mm (0: sharp)");
     c.add_option("--ovality", o_.ovality_mm, "Ovality of the cross-section, mm");
@@ -105,6 +110,7 @@ class GeneratePanelCommand : public Command {
   }
 
   PanelOptions o_;
+  std::string opening_ = "ellipse";
   std::string out_;
   bool json_ = false;
   bool quiet_ = false;

@@ -1,6 +1,6 @@
 // `conform sicp`: deburring on a deformed part. Maps the nominal trajectory onto the scanned part by
 // Subdivision-ICP, one rigid transform or the projection model (pipelines/sicp.h) and writes it with the same rows.
-// Exit code 1 when the registration did not converge (nothing is written then).
+// Exit code 1 when the registration did not converge or the path failed its checks (nothing is written then).
 
 #include <cstdio>
 #include <string>
@@ -24,7 +24,9 @@ nlohmann::json error_json(const TrajectoryError& e) {
           {"normal_mean_deg", e.normal_mean_deg},
           {"normal_max_deg", e.normal_max_deg},
           {"max_step_mm", e.max_step_mm},
-          {"truth_step_mm", e.truth_step_mm}};
+          {"truth_step_mm", e.truth_step_mm},
+          {"normal_step_max_deg", e.normal_step_max_deg},
+          {"truth_normal_step_max_deg", e.truth_normal_step_max_deg}};
 }
 
 class SicpCommand : public Command {
@@ -41,22 +43,18 @@ class SicpCommand : public Command {
                  "Nominal trajectory, CSV x_mm,y_mm,z_mm,nx,ny,nz (unit tool normals); required")
         ->required();
     c.add_option("--surface", options_.surface_path,
-                 "Nominal surface around the contour (mesh: point-to-surface); default the contour mesh, or none "
-                 "(contour-only, point-to-point, no joint refinement)");
-    c.add_option("--segment-length", o.sicp.segmentation.segment_length_mm,
-                 "Longest segment (epsilon), mm");
+                 "Nominal surface around the contour (mesh: point-to-surface); required with a CSV contour (a mesh "
+                 "contour is its own surface)");
+    c.add_option("--segment-length", o.sicp.segmentation.segment_length_mm, "Longest segment (epsilon), mm");
     c.add_option("--overlap", o.sicp.segmentation.overlap,
                  "Overlap at each junction, share of the shorter segment, in (0, 1)");
     c.add_option("--curvature-radius", o.sicp.segmentation.curvature_radius_mm,
-                 "Osculating radius below which a contour point is a corner (a segment boundary), mm; 0: none; "
-                 "default 15");
-    c.add_option("--model", model_, "sicp, rigid or projection")
-        ->check(CLI::IsMember({"sicp", "rigid", "projection"}));
+                 "Osculating radius below which a contour point is a corner (a segment boundary), mm; 0: none");
+    c.add_option("--model", model_, "sicp, rigid or projection")->check(CLI::IsMember({"sicp", "rigid", "projection"}));
     c.add_option("--projection-fit", fit_, "The projection model's height field: parabola or spline")
         ->check(CLI::IsMember({"parabola", "spline"}));
     c.add_option("--neighbourhood", o.sicp.neighbourhood_mm, "Contour neighbourhood: scan within this, mm");
-    c.add_option("--stability", o.sicp.stability_mm,
-                 "Stability region reaches this far from the contour, mm");
+    c.add_option("--stability", o.sicp.stability_mm, "Stability region reaches this far from the contour, mm");
     c.add_option("--max-distance", o.sicp.max_distance_mm, "Pair distance of the segment ICPs, mm");
     c.add_option("--coarse-max-distance", o.sicp.coarse_max_distance_mm,
                  "Pair distance of the first rigid ICP (the scan is roughly in place), mm");
@@ -64,12 +62,30 @@ class SicpCommand : public Command {
     c.add_flag("--no-joint", no_joint_, "Segments registered independently (the paper), no joint refinement");
     c.add_option("--joint-weight", o.sicp.joint.weight,
                  "Weight of neighbouring segments' disagreement in the joint refinement");
-    c.add_option("--normals", normals_, "Tool normals: scan (plane fitted around each point) or rotate")
+    c.add_option("--joint-damping", o.sicp.joint.damping,
+                 "Weight of each segment's slide along the edge in the joint refinement (holds a drift the data leave "
+                 "free)");
+    c.add_option("--max-iterations", o.sicp.max_iterations,
+                 "Iteration limit of every ICP (rigid and segments); a fit that reaches it is kept and judged by its "
+                 "residuals")
+        ->check(CLI::Range(1, 1000));
+    c.add_option("--min-edge-points", o.checks.min_edge_points,
+                 "Scan points near the edge a segment needs; fewer: its rows are untrusted");
+    c.add_option("--outlier-ratio", o.checks.outlier_ratio,
+                 "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
+    c.add_option("--max-offset", o.checks.max_offset_mm,
+                 "Trajectory rows farther than this from the contour are untrusted, mm");
+    c.add_option("--normal-smoothing", o.normals.smooth_mm,
+                 "Tool normals averaged along the path over this arc length, mm; 0: not smoothed");
+    c.add_option("--normals", normals_, "Tool normals: rotate (the nominal ones with the blended transforms) or scan (plane fitted around each point)")
         ->check(CLI::IsMember({"scan", "rotate"}));
     c.add_option("--truth", options_.truth_path,
                  "Ground-truth trajectory (same columns and rows): report the error against it");
     c.add_option("--out-trajectory", options_.out_trajectory_path,
                  "Write the compensated trajectory (CSV, same rows and order) when the registration converged");
+    c.add_option("--out-rows", options_.out_rows_path,
+                 "Write each row's correction (across the edge, along the tool axis, along the path, mm) and its "
+                 "confidence (CSV), with the trajectory");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
@@ -77,7 +93,7 @@ class SicpCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.contour_path, options_.scan_path, options_.trajectory_path, options_.surface_path,
                       options_.truth_path});
-    files.add_output(options_.out_trajectory_path);
+    files.add_outputs({options_.out_trajectory_path, options_.out_rows_path});
   }
 
   int run() override {
@@ -96,9 +112,9 @@ class SicpCommand : public Command {
     } else {
       print_text(r);
     }
-    if (!r.compensation.converged) {
-      std::fprintf(stderr, "conform: the registration did not converge (%s); no trajectory written\n",
-                   r.compensation.termination.c_str());
+    if (!r.compensation.trusted) {
+      std::fprintf(stderr, "conform: the compensated path cannot be trusted: %s; no trajectory written\n",
+                   r.compensation.check.reason.c_str());
       return 1;
     }
     return 0;
@@ -123,7 +139,9 @@ class SicpCommand : public Command {
                           {"stability_points", f.stability_points},
                           {"icp_iterations", f.icp.iterations},
                           {"rms_mm", f.rms_mm},
-                          {"converged", f.converged}});
+                          {"converged", f.converged},
+                          {"usable", f.usable},
+                          {"confidence", k < c.check.segment_confidence.size() ? c.check.segment_confidence[k] : 0.0}});
     }
     nlohmann::json j = {{"model", to_string(c.model)},
                         {"converged", c.converged},
@@ -151,7 +169,18 @@ class SicpCommand : public Command {
                           {"solver_iterations", g.joint.solver_iterations},
                           {"max_disagreement_before_mm", g.joint.max_disagreement_before_mm},
                           {"max_disagreement_after_mm", g.joint.max_disagreement_after_mm}}},
+                        {"checks",
+                         {{"trusted", c.trusted},
+                          {"reason", c.check.reason},
+                          {"noise_mm", c.check.noise_mm},
+                          {"blind_segments", c.check.blind_segments},
+                          {"outlier_segments", c.check.outlier_segments},
+                          {"untrusted_rows", c.check.untrusted_rows},
+                          {"far_rows", c.check.far_rows},
+                          {"min_confidence", c.check.min_confidence}}},
+                        {"trusted", c.trusted},
                         {"out_trajectory", r.out_trajectory_path},
+                        {"out_rows", r.out_rows_path},
                         {"warnings", r.warnings}};
     if (c.model == SicpModel::kProjection) {
       const ProjectionModel& p = c.projection;
@@ -189,16 +218,25 @@ class SicpCommand : public Command {
       std::printf(
           "             row by row: mean %.4f mm, max %.4f mm (row %zu); tool normals mean %.3f deg, max %.3f deg\n",
           e.mean_mm, e.max_mm, e.worst_row + 1, e.normal_mean_deg, e.normal_max_deg);
-      std::printf("smoothness   largest row-to-row change of the correction %.4f mm (truth %.4f mm)\n", e.max_step_mm,
-                  e.truth_step_mm);
+      std::printf(
+          "smoothness   largest row-to-row change of the correction %.4f mm (truth %.4f mm), of the tool "
+          "normal %.3f deg (truth %.3f deg)\n",
+          e.max_step_mm, e.truth_step_mm, e.normal_step_max_deg, e.truth_normal_step_max_deg);
     }
+    const SicpCheck& k = c.check;
+    std::printf(
+        "checks       noise %.4f mm; %zu blind, %zu outlier segments; %zu of %zu rows untrusted (lowest "
+        "confidence %.2f): %s\n",
+        k.noise_mm, k.blind_segments.size(), k.outlier_segments.size(), k.untrusted_rows, k.rows.size(),
+        k.min_confidence, c.trusted ? "trusted" : k.reason.c_str());
     if (!r.out_trajectory_path.empty()) std::printf("written      %s\n", r.out_trajectory_path.c_str());
+    if (!r.out_rows_path.empty()) std::printf("written      %s\n", r.out_rows_path.c_str());
   }
 
   SicpJobOptions options_;
   std::string model_ = "sicp";
   std::string fit_ = "parabola";
-  std::string normals_ = "scan";
+  std::string normals_ = options_.compensation.normals.from_scan ? "scan" : "rotate";
   bool no_joint_ = false;
   bool json_ = false;
   bool quiet_ = false;

@@ -13,18 +13,7 @@ BlendAt blend_at(const ContourSegmentation& g, double s) {
   const std::size_t count = g.segments.size();
   if (count == 0) throw Error("S-ICP blend: no segments");
   // The core holding s; on an open contour, points beyond the ends belong to the end segments.
-  std::size_t k = 0;
-  if (!g.closed && s >= g.length_mm) {
-    k = count - 1;
-  } else if (g.closed || s > 0.0) {
-    for (std::size_t i = 0; i < count; ++i) {
-      const double d = g.ahead(g.segments[i].start_mm, s);
-      if (d >= 0.0 && d < g.segments[i].length_mm) {
-        k = i;
-        break;
-      }
-    }
-  }
+  const std::size_t k = g.core_at(s);
   const ContourSegment& c = g.segments[k];
   const double d = g.ahead(c.start_mm, s);
   BlendAt b{k, k, 0.0};

@@ -37,6 +37,8 @@ bool ToolNormalOptions::IsValid(std::string* error) const {
     why = "tool normal fit needs at least 3 points";
   else if (!std::isfinite(max_tilt_rad) || max_tilt_rad <= 0.0)
     why = "tool normal tilt limit must be > 0";
+  else if (!std::isfinite(smooth_mm) || smooth_mm < 0.0 || smooth_mm > 1000.0)
+    why = "tool normal smoothing must be in [0, 1000] mm";
   if (why == nullptr) return true;
   if (error != nullptr) *error = why;
   return false;
@@ -145,6 +147,33 @@ std::size_t reestimate_tool_normals(Trajectory& t, const std::vector<Eigen::Vect
     ++from_scan;
   }
   return from_scan;
+}
+
+void smooth_tool_normals(Trajectory& t, double window_mm) {
+  const std::size_t n = t.points.size();
+  if (window_mm <= 0.0 || n < 3) return;
+  std::vector<double> spacing(n, 0.0);  // spacing[i]: from row i to row i + 1 (the closing edge last)
+  for (std::size_t i = 0; i < n; ++i) spacing[i] = (t.points[(i + 1) % n] - t.points[i]).norm();
+  std::vector<double> sorted(spacing.begin(), spacing.end() - 1);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const bool closed = spacing[n - 1] <= 3.0 * sorted[sorted.size() / 2];
+  const std::vector<Eigen::Vector3d> normals = t.normals;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3d sum = normals[i];
+    for (int direction : {-1, 1}) {
+      double d = 0.0;
+      std::size_t j = i;
+      for (std::size_t steps = 1; steps < n; ++steps) {
+        if (!closed && ((direction < 0 && j == 0) || (direction > 0 && j + 1 == n))) break;
+        const std::size_t next = direction > 0 ? (j + 1) % n : (j + n - 1) % n;
+        d += spacing[direction > 0 ? j : next];
+        if (d >= window_mm || next == i) break;
+        sum += (1.0 - d / window_mm) * normals[next];
+        j = next;
+      }
+    }
+    if (sum.norm() > 1e-12) t.normals[i] = sum.normalized();
+  }
 }
 
 void check_trajectory(const Trajectory& t, const std::string& what) {

@@ -75,6 +75,11 @@ TrajectoryError trajectory_error(const Trajectory& estimate, const Trajectory& t
     const Eigen::Vector3d true_step =
         (truth.points[i] - nominal.points[i]) - (truth.points[i - 1] - nominal.points[i - 1]);
     e.max_step_mm = std::max(e.max_step_mm, step.norm());
+    const auto turn = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+      return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+    };
+    e.normal_step_max_deg = std::max(e.normal_step_max_deg, turn(estimate.normals[i], estimate.normals[i - 1]));
+    e.truth_normal_step_max_deg = std::max(e.truth_normal_step_max_deg, turn(truth.normals[i], truth.normals[i - 1]));
     e.truth_step_mm = std::max(e.truth_step_mm, true_step.norm());
   }
   const auto count = static_cast<double>(n);

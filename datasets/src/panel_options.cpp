@@ -29,6 +29,12 @@ bool check_shape(const PanelOptions& o, std::string* error) {
     if (!std::isfinite(o.porthole_x_mm) || !std::isfinite(o.porthole_y_mm))
       return fail(error, "porthole centre must be finite");
     if (!positive(o.clamp_span_mm)) return fail(error, "clamp span must be > 0 mm");
+    if (o.opening == PlateOpening::kRoundedRectangle &&
+        (!std::isfinite(o.corner_radius_mm) || o.corner_radius_mm < 0.0 ||
+         2.0 * o.corner_radius_mm >=
+             std::min(o.porthole_width_mm, o.round ? o.porthole_width_mm : o.porthole_height_mm)))
+      return fail(error, "corner radius must be >= 0 mm and less than half the cut-out's smaller side, got " +
+                             number(o.corner_radius_mm));
     return true;
   }
   if (!positive(o.barrel_radius_mm)) return fail(error, "barrel radius must be > 0 mm");
@@ -69,9 +75,26 @@ bool check_sampling(const PanelOptions& o, std::string* error) {
 
 const char* to_string(PanelShape shape) { return shape == PanelShape::kPlate ? "plate" : "nosecone"; }
 
+const char* to_string(PlateOpening opening) {
+  return opening == PlateOpening::kEllipse ? "ellipse" : "rounded_rectangle";
+}
+
+PanelOptions harder_plate(PlateOpening opening, std::uint64_t seed) {
+  PanelOptions o;
+  o.shape = PanelShape::kPlate;
+  o.opening = opening;
+  o.corner_radius_mm = 6.0;
+  o.field_mm = 6.0;
+  o.noise_mm = 0.05;
+  o.seed = seed;
+  return o;
+}
+
 bool PanelOptions::IsValid(std::string* error) const {
   if (!check_shape(*this, error) || !check_sampling(*this, error)) return false;
-  const double deformation[] = {sag_mm, bend_mm, twist_mm, ovality_mm, droop_mm};
+  const double deformation[] = {sag_mm, bend_mm, twist_mm, ovality_mm, droop_mm, field_mm};
+  if (!std::isfinite(field_wavelength_mm) || field_wavelength_mm < 10.0 || field_wavelength_mm > 1e6)
+    return fail(error, "field wavelength must be in [10, 1e6] mm, got " + number(field_wavelength_mm));
   for (double d : deformation) {
     if (!std::isfinite(d) || std::abs(d) > 1000.0) return fail(error, "deformation amplitudes must be finite, < 1 m");
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace conform {
 namespace {
@@ -38,11 +39,8 @@ std::vector<OpeningSample> ellipse_edge(const PanelOptions& o, double step) {
 
 // A convex polygon, counter-clockwise, with corners rounded to radius r: straight edges between arcs about the
 // corners of the polygon shrunk by r. r = 0 leaves fans (the same point, m turning) at the corners.
-std::vector<OpeningSample> window_edge(const PanelOptions& o, double step) {
-  const double h = 0.5 * o.window_height_mm;
-  const std::array<Eigen::Vector2d, 4> v = {
-      Eigen::Vector2d(-h, -0.5 * o.window_bottom_mm), Eigen::Vector2d(h, -0.5 * o.window_top_mm),
-      Eigen::Vector2d(h, 0.5 * o.window_top_mm), Eigen::Vector2d(-h, 0.5 * o.window_bottom_mm)};
+std::vector<OpeningSample> rounded_polygon_edge(const PanelOptions& o, const std::array<Eigen::Vector2d, 4>& v,
+                                                double step) {
   std::array<Eigen::Vector2d, 4> normal;  // outward of edge k = v[k] -> v[k+1]
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector2d t = (v[static_cast<std::size_t>((k + 1) % 4)] - v[static_cast<std::size_t>(k)]).normalized();
@@ -77,6 +75,55 @@ std::vector<OpeningSample> window_edge(const PanelOptions& o, double step) {
   return edge;
 }
 
+std::vector<OpeningSample> window_edge(const PanelOptions& o, double step) {
+  const double h = 0.5 * o.window_height_mm;
+  return rounded_polygon_edge(
+      o,
+      {Eigen::Vector2d(-h, -0.5 * o.window_bottom_mm), Eigen::Vector2d(h, -0.5 * o.window_top_mm),
+       Eigen::Vector2d(h, 0.5 * o.window_top_mm), Eigen::Vector2d(-h, 0.5 * o.window_bottom_mm)},
+      step);
+}
+
+std::vector<OpeningSample> cut_out_edge(const PanelOptions& o, double step) {
+  const double a = 0.5 * o.porthole_width_mm;
+  const double b = o.round ? a : 0.5 * o.porthole_height_mm;
+  const Eigen::Vector2d c(o.porthole_x_mm, o.porthole_y_mm);
+  return rounded_polygon_edge(
+      o,
+      {c + Eigen::Vector2d(-a, -b), c + Eigen::Vector2d(a, -b), c + Eigen::Vector2d(a, b), c + Eigen::Vector2d(-a, b)},
+      step);
+}
+
+// A number in [-1, 1] from (seed, index): splitmix64, so that the field needs no state per call.
+double field_hash(std::uint64_t seed, std::uint64_t index) {
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + (index + 1) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return 2.0 * static_cast<double>(z >> 11) / 9007199254740992.0 - 1.0;
+}
+
+// The smooth field: per axis three plane waves a sin(2 pi (u . p) / lambda + phi) over the panel's (x, y), with
+// sum |a| = 1 so that the axis' bound holds (field_mm along z, half of it along x and y).
+Eigen::Vector3d smooth_field(const PanelOptions& o, const Eigen::Vector3d& p) {
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  if (o.field_mm == 0.0) return d;
+  const std::uint64_t seed = o.seed ^ 0x5EEDF1E1Dull;
+  for (int axis = 0; axis < 3; ++axis) {
+    double a[3], sum = 0.0;
+    for (int j = 0; j < 3; ++j) sum += std::abs(a[j] = field_hash(seed, static_cast<std::uint64_t>(10 * axis + j)));
+    for (int j = 0; j < 3; ++j) {
+      const auto key = static_cast<std::uint64_t>(100 + 10 * axis + j);
+      const double direction = M_PI * field_hash(seed, key);
+      const double lambda = o.field_wavelength_mm * (1.5 + 0.5 * field_hash(seed, key + 1000));
+      const double phase = M_PI * field_hash(seed, key + 2000);
+      const double u = std::cos(direction) * p.x() + std::sin(direction) * p.y();
+      d(axis) += a[j] / std::max(sum, 1e-12) * std::sin(2.0 * M_PI * u / lambda + phase);
+    }
+  }
+  return o.field_mm * Eigen::Vector3d(0.5 * d.x(), 0.5 * d.y(), d.z());
+}
+
 // Normalised deflection of a uniformly loaded simply supported beam, 1 at mid-span, 0 at the supports.
 double beam(double xi) { return 16.0 / 5.0 * (xi - 2.0 * xi * xi * xi + xi * xi * xi * xi); }
 
@@ -85,12 +132,14 @@ Eigen::Vector3d displacement(const PanelOptions& o, const Eigen::Vector3d& p) {
     const double xi = p.x() / o.clamp_span_mm + 0.5;
     const double u = 2.0 * p.x() / o.clamp_span_mm;
     const double v = 2.0 * (p.y() - o.porthole_y_mm) / (o.round ? o.porthole_width_mm : o.porthole_height_mm);
-    return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v);
+    return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v) +
+           smooth_field(o, p);
   }
   const double theta = std::atan2(p.y(), p.z());
   const Eigen::Vector3d e_r(0.0, std::sin(theta), std::cos(theta));
   const double front = (p.x() + 0.5 * o.barrel_length_mm) / o.barrel_length_mm;
-  return o.ovality_mm * std::cos(2.0 * theta) * e_r - o.droop_mm * front * front * Eigen::Vector3d::UnitZ();
+  return o.ovality_mm * std::cos(2.0 * theta) * e_r - o.droop_mm * front * front * Eigen::Vector3d::UnitZ() +
+         smooth_field(o, p);
 }
 
 }  // namespace
@@ -112,7 +161,8 @@ Eigen::Vector3d panel_normal(const PanelOptions& o, const Eigen::Vector2d& q) {
 }
 
 std::vector<OpeningSample> opening_edge(const PanelOptions& options, double step_mm) {
-  return options.shape == PanelShape::kPlate ? ellipse_edge(options, step_mm) : window_edge(options, step_mm);
+  if (options.shape == PanelShape::kNoseCone) return window_edge(options, step_mm);
+  return options.opening == PlateOpening::kEllipse ? ellipse_edge(options, step_mm) : cut_out_edge(options, step_mm);
 }
 
 OpeningSample edge_at(const std::vector<OpeningSample>& edge, double total_tau, double tau) {

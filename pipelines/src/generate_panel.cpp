@@ -29,11 +29,15 @@ nlohmann::json options_json(const PanelOptions& o) {
                       {"hole_radius_mm", o.hole_radius_mm},
                       {"rotation_deg", vector_json(o.rotation_deg)},
                       {"translation_mm", vector_json(o.translation_mm)},
+                      {"field_mm", o.field_mm},
+                      {"field_wavelength_mm", o.field_wavelength_mm},
                       {"seed", o.seed}};
   if (o.shape == PanelShape::kPlate) {
     j["plate"] = {{"radius_x_mm", o.plate_radius_x_mm},
                   {"radius_y_mm", o.plate_radius_y_mm},
                   {"porthole_width_mm", o.porthole_width_mm},
+                  {"opening", to_string(o.opening)},
+                  {"corner_radius_mm", o.corner_radius_mm},
                   {"porthole_height_mm", o.round ? o.porthole_width_mm : o.porthole_height_mm},
                   {"round", o.round},
                   {"porthole_centre_mm", {o.porthole_x_mm, o.porthole_y_mm}},

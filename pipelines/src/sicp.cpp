@@ -36,19 +36,22 @@ Polyline contour_from_csv(const std::string& path) {
   return c;
 }
 
-// The boundary loop of the mesh that lies on the scan: the smallest median distance of its points to the scan.
-Polyline contour_from_mesh(const Mesh& mesh, const std::string& path, const KdTree& scan_tree, std::string* source) {
+// The boundary loop the trajectory follows: the smallest median distance from the trajectory's rows to the loop (a
+// loop on the scan is not enough: the flank's bottom edge and the band's outer rim may both be scanned).
+Polyline contour_from_mesh(const Mesh& mesh, const std::string& path, const Trajectory& trajectory,
+                           std::string* source) {
   const std::vector<Polyline> loops = boundary_polylines(mesh);
   if (loops.empty())
     throw Error(path + ": the mesh has no boundary (no edge used by one triangle only) to take as the contour");
   std::size_t best = 0;
   double best_distance = std::numeric_limits<double>::infinity();
+  const std::size_t step = std::max<std::size_t>(1, trajectory.points.size() / 200);
   for (std::size_t k = 0; k < loops.size(); ++k) {
+    const KdTree loop_tree(loops[k].points);
     std::vector<float> d;
-    const std::size_t step = std::max<std::size_t>(1, loops[k].points.size() / 200);
-    for (std::size_t i = 0; i < loops[k].points.size(); i += step) {
+    for (std::size_t i = 0; i < trajectory.points.size(); i += step) {
       float sq = 0.0f;
-      scan_tree.nearest(loops[k].points[i].cast<float>(), &sq);
+      loop_tree.nearest(trajectory.points[i].cast<float>(), &sq);
       d.push_back(sq);
     }
     std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
@@ -73,6 +76,17 @@ Trajectory read_trajectory(const std::string& path) {
     t.normals.push_back(n.normalized());
   }
   return t;
+}
+
+void write_rows(const std::string& path, const SicpCheck& c) {
+  CsvWriter writer({"row", "across_mm", "axis_mm", "along_mm", "confidence", "contour_distance_mm"}, 6);
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const SicpRowReport& r = c.rows[i];
+    writer.cell(static_cast<std::int64_t>(i + 1));
+    for (double v : {r.across_mm, r.axis_mm, r.along_mm, r.confidence, r.contour_distance_mm}) writer.cell(v);
+    writer.end_row();
+  }
+  writer.write(path);
 }
 
 void write_trajectory(const std::string& path, const Trajectory& t) {
@@ -102,8 +116,17 @@ bool SicpJobOptions::IsValid(std::string* error) const {
     why = "no scan: give --scan";
   else if (trajectory_path.empty())
     why = "no trajectory: give --trajectory (CSV x_mm,y_mm,z_mm,nx,ny,nz)";
+  else if (is_csv(contour_path) && surface_path.empty())
+    why =
+        "a CSV contour needs --surface (the nominal surface mesh around it): contour-only S-ICP pairs the contour "
+        "with the scanned surface beside the edge, not with the edge, and is refused; or give the nominal mesh as "
+        "--contour";
   else if (!out_trajectory_path.empty() && !is_csv(out_trajectory_path))
     why = out_trajectory_path + ": the compensated trajectory is written as .csv";
+  else if (!out_rows_path.empty() && !is_csv(out_rows_path))
+    why = out_rows_path + ": the per-row report is written as .csv";
+  else if (!compensation.checks.IsValid(&why))
+    why = "checks: " + why;
   else if (!compensation.sicp.IsValid(&why))
     why = "S-ICP: " + why;
   else if (!compensation.projection.IsValid(&why))
@@ -141,7 +164,7 @@ SicpJobResult run_sicp(const SicpJobOptions& options) {
     result.contour_source = "csv";
   } else {
     const Mesh mesh = read_mesh(options.contour_path, read);
-    contour = contour_from_mesh(mesh, options.contour_path, KdTree(scan), &result.contour_source);
+    contour = contour_from_mesh(mesh, options.contour_path, nominal, &result.contour_source);
     if (!has_surface) surface = mesh, has_surface = true;
   }
   result.contour_source += contour.closed ? " (closed)" : " (open)";
@@ -162,11 +185,18 @@ SicpJobResult run_sicp(const SicpJobOptions& options) {
   compensation.sicp.progress = options.progress;
   result.compensation = compensate_trajectory(contour, has_surface ? &surface : nullptr, scan, nominal, compensation);
   for (const std::string& w : result.compensation.registration.warnings) result.warnings.push_back(w);
+  for (const std::string& w : result.compensation.check.warnings) result.warnings.push_back(w);
   if (truth) result.error = trajectory_error(result.compensation.trajectory, *truth, nominal);
-  if (result.compensation.converged && !options.out_trajectory_path.empty()) {
+  if (result.compensation.trusted) {
     report(options.progress, "write", 0.0);
-    write_trajectory(options.out_trajectory_path, result.compensation.trajectory);
-    result.out_trajectory_path = options.out_trajectory_path;
+    if (!options.out_trajectory_path.empty()) {
+      write_trajectory(options.out_trajectory_path, result.compensation.trajectory);
+      result.out_trajectory_path = options.out_trajectory_path;
+    }
+    if (!options.out_rows_path.empty()) {
+      write_rows(options.out_rows_path, result.compensation.check);
+      result.out_rows_path = options.out_rows_path;
+    }
     report(options.progress, "write", 1.0);
   }
   return result;

@@ -22,6 +22,12 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
                                              const std::vector<Eigen::Vector3d>& scan, const Trajectory& nominal,
                                              const SicpCompensationOptions& options) {
   check_trajectory(nominal, "trajectory");
+  if (surface == nullptr) {
+    throw Error(
+        "S-ICP without a nominal surface (contour-only) is refused: the contour's points would pair with the scanned "
+        "surface beside the edge, not with the edge, and the path comes out worse than one rigid transform; give "
+        "--surface (the nominal surface mesh around the contour) or the nominal mesh as --contour");
+  }
   SicpCompensationResult r;
   r.model = options.model;
   const double voxel = options.sicp.scan_voxel_mm;
@@ -29,8 +35,7 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
   SicpOptions sicp = options.sicp;
   sicp.scan_voxel_mm = 0.0;  // thinned already
   sicp.rigid_only = options.model != SicpModel::kSicp;
-  std::unique_ptr<IcpReference> reference;
-  if (surface != nullptr) reference = std::make_unique<IcpReference>(*surface);
+  const auto reference = std::make_unique<IcpReference>(*surface);
   r.registration = sicp_register(contour, reference.get(), thin, sicp);
   r.registration.scan_points_used = thin.size();
   r.converged = r.registration.converged;
@@ -46,7 +51,6 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
       r.trajectory = map_rigidly(nominal, r.registration.T_scan_nominal_rigid);
       break;
     case SicpModel::kProjection: {
-      if (reference == nullptr) throw Error("the projection model needs the nominal surface (--surface)");
       r.projection =
           fit_projection_model(contour, *reference, thin, r.registration.T_scan_nominal_rigid, options.projection);
       for (std::size_t i = 0; i < nominal.points.size(); ++i) {
@@ -56,10 +60,13 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
       break;
     }
   }
-  if (options.normals.from_scan && !thin.empty()) {
-    const KdTree tree(thin);
+  const KdTree tree(thin);
+  if (options.normals.from_scan)
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
-  }
+  smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
+  r.check =
+      check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks, estimate_scan_noise(thin, tree));
+  r.trusted = r.check.trusted;
   return r;
 }
 

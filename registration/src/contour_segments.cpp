@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "conform/core/csv.h"
 #include "conform/core/error.h"
 
 namespace conform {
@@ -98,8 +99,9 @@ std::vector<ContourSegment> cut(const std::vector<double>& breaks, double length
 }  // namespace
 
 bool ContourSegmentationOptions::IsValid(std::string* error) const {
-  if (!std::isfinite(segment_length_mm) || segment_length_mm <= 0.0)
-    return fail(error, "segment length must be > 0 mm");
+  if (!std::isfinite(segment_length_mm) || segment_length_mm < 1.0 || segment_length_mm > 1e5)
+    return fail(error, "segment length must be in [1, 1e5] mm (a segment shorter than a millimetre holds no scan)");
+  if (max_segments < 1) return fail(error, "the segment limit must be >= 1");
   if (!std::isfinite(overlap) || overlap <= 0.0 || overlap >= 1.0)
     return fail(error, "overlap must be in (0, 1) (a share of the shorter segment at each junction)");
   if (!std::isfinite(curvature_radius_mm) || curvature_radius_mm < 0.0)
@@ -114,6 +116,25 @@ double ContourSegmentation::ahead(double from, double s) const {
   double d = std::fmod(s - from, length_mm);
   if (d < 0.0) d += length_mm;
   return d;
+}
+
+std::size_t ContourSegmentation::core_at(double s) const {
+  const std::size_t count = segments.size();
+  if (count <= 1) return 0;
+  if (closed) {
+    s = std::fmod(s - segments.front().start_mm, length_mm);
+    if (s < 0.0) s += length_mm;
+    s += segments.front().start_mm;
+  }
+  // The last segment whose start is at or before s; the cores tile the contour in order from the first start.
+  std::size_t lo = 0, hi = count;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    const double start = segments[mid].start_mm < segments.front().start_mm ? segments[mid].start_mm + length_mm
+                                                                            : segments[mid].start_mm;
+    (start <= s ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 bool ContourSegmentation::reaches(std::size_t k, double s) const {
@@ -169,6 +190,15 @@ ContourSegmentation segment_contour(const Polyline& contour, const ContourSegmen
   if (!r.closed) {
     breaks.push_back(r.length_mm);
     at_corner.push_back(false);
+  }
+  // Eq. (6) per piece: at most L / epsilon + one per piece. Checked before the segments (and their ICPs) exist.
+  const double estimate = r.length_mm / options.segment_length_mm + static_cast<double>(breaks.size());
+  if (estimate > static_cast<double>(options.max_segments)) {
+    throw Error("contour segmentation: a contour of " + format_fixed(r.length_mm, 1) + " mm in segments of at most " +
+                format_fixed(options.segment_length_mm, 1) + " mm needs about " +
+                std::to_string(std::llround(estimate)) + " segments, more than the limit of " +
+                std::to_string(options.max_segments) +
+                " (max_segments): check the contour's units and points, or give a longer segment length");
   }
   r.segments = cut(breaks, r.length_mm, r.closed, options, at_corner);
   return r;

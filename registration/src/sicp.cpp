@@ -13,6 +13,9 @@
 namespace conform {
 namespace {
 
+// A segment's fine ICP with at least this share of its points paired needs no coarse pass first.
+constexpr double kWellPaired = 0.9;
+
 IcpOptions icp_options(const SicpOptions& o, bool surface, double max_distance_mm) {
   IcpOptions icp;
   icp.method = surface ? IcpMethod::kPointToSurface : IcpMethod::kPointToPoint;
@@ -55,8 +58,9 @@ double pair_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometr
 }
 
 // The segment ICPs, in parallel (each is independent, so the result does not depend on the thread count).
-void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
-                  const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
+void fit_segments_from(const detail::SicpSelection& selection, const IcpReference& reference,
+                       const std::vector<Eigen::Isometry3d>& starts, const SicpOptions& o,
+                       std::vector<SicpSegmentFit>& fits, bool surface = true) {
   const auto count = static_cast<std::ptrdiff_t>(fits.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
@@ -65,9 +69,39 @@ void fit_segments(const detail::SicpSelection& selection, const IcpReference& re
     fit.neighbourhood_points = selection.neighbourhood_counts[static_cast<std::size_t>(k)];
     fit.stability_points = points.size() - fit.neighbourhood_points;
     if (points.size() < 6) continue;  // too little scan: the joint refinement ties it to its neighbours
+    const Eigen::Isometry3d& T_start = starts[static_cast<std::size_t>(k)];
     fit.icp = icp(points, reference, T_start, icp_options(o, surface, o.max_distance_mm));
+    // Where the part bends away from the start by more than the fine pair distance, many points find no pair: a
+    // first pass at the coarse distance brings the segment within reach (beyond the paper, whose segments start from
+    // the rigid pose). Only then: on a gently curved edge the wide pass can slide a segment that needed nothing.
+    if (o.coarse_segment_pass && (!icp_usable(fit.icp) || fit.icp.inlier_fraction < kWellPaired)) {
+      const IcpResult first = icp(points, reference, T_start, icp_options(o, surface, o.coarse_max_distance_mm));
+      if (icp_usable(first)) {
+        const IcpResult second = icp(points, reference, first.T_ref_scan, icp_options(o, surface, o.max_distance_mm));
+        if (icp_usable(second) && (!icp_usable(fit.icp) || second.inlier_fraction > fit.icp.inlier_fraction))
+          fit.icp = second;
+      }
+    }
     fit.converged = fit.icp.converged;
   }
+}
+
+void fit_segments(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
+                  const Eigen::Isometry3d& T_start, const SicpOptions& o, std::vector<SicpSegmentFit>& fits) {
+  fit_segments_from(selection, reference, std::vector<Eigen::Isometry3d>(fits.size(), T_start), o, fits, surface);
+}
+
+// The contour's chord over segment k's core (nominal frame, unit; zero when degenerate).
+Eigen::Vector3d edge_direction(const Polyline& contour, const ContourSegmentation& g, std::size_t k) {
+  const auto point_at = [&](double s) {
+    if (g.closed) s = std::fmod(std::fmod(s, g.length_mm) + g.length_mm, g.length_mm);
+    const auto it = std::lower_bound(g.arc_length_mm.begin(), g.arc_length_mm.end(), s);
+    return contour.points[std::min<std::size_t>(static_cast<std::size_t>(it - g.arc_length_mm.begin()),
+                                                contour.points.size() - 1)];
+  };
+  const ContourSegment& c = g.segments[k];
+  const Eigen::Vector3d chord = point_at(c.start_mm + c.length_mm) - point_at(c.start_mm);
+  return chord.norm() > 1e-9 ? Eigen::Vector3d(chord.normalized()) : Eigen::Vector3d::Zero();
 }
 
 // The rigid ICP of the contour's neighbourhood: first with the coarse pair distance over a neighbourhood widened by
@@ -95,7 +129,73 @@ Eigen::Isometry3d coarse_fit(const Polyline& contour, const detail::ContourLocat
   return T;
 }
 
+// The segment ICPs (and, with a surface, the reselection at their own poses and the second round); fills
+// result.segments and their starting transforms for the joint refinement (nominal <- scan with a surface); returns
+// the selection the transforms were fitted to.
+detail::SicpSelection register_segments(const Polyline& contour, const detail::ContourLocator& locator,
+                                        const std::vector<Eigen::Vector3d>& thin, const IcpReference& reference,
+                                        bool surface, const Eigen::Isometry3d& T, const SicpOptions& options,
+                                        SicpResult& result, std::vector<Eigen::Isometry3d>& transforms) {
+  // Each segment keeps at most points_per_segment + stability_points_per_segment; four times that many candidates in
+  // all are plenty (a segment's share of the scan is about its share of the contour).
+  const std::size_t candidates =
+      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
+  const std::vector<Eigen::Vector3d> scan_candidates = stride_downsample(thin, candidates);
+  detail::SicpSelection selection =
+      surface ? locator.select_scan(scan_candidates, T, options) : locator.select_contour(contour, options);
+  result.segments.resize(result.segmentation.segments.size());
+  fit_segments(selection, reference, surface, T, options, result.segments);
+  if (surface && options.reselect) {
+    // The segments' own poses select their scan again (the rigid pose may have put the edge out of reach), and the
+    // segment ICPs run once more from those poses (fine distance only).
+    std::vector<Eigen::Isometry3d> first;
+    for (const SicpSegmentFit& f : result.segments) first.push_back(icp_usable(f.icp) ? f.icp.T_ref_scan : T);
+    selection = locator.reselect_scan(scan_candidates, T, first, options);
+    std::vector<SicpSegmentFit> again(result.segments.size());
+    SicpOptions fine = options;
+    fine.coarse_segment_pass = false;
+    fit_segments_from(selection, reference, first, fine, again);
+    result.segments = std::move(again);
+  }
+  for (std::size_t k = 0; k < result.segments.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    f.usable = f.neighbourhood_points + f.stability_points >= 6 && icp_usable(f.icp);
+    transforms.push_back(f.usable ? f.icp.T_ref_scan : T);
+    if (!f.usable) {
+      result.warnings.push_back(
+          "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
+          " neighbourhood points, its ICP " +
+          (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
+          "; it starts from the rigid pose and the joint refinement ties it to its neighbours");
+    }
+  }
+  return selection;
+}
+
+// Every segment's final transform (scan <- nominal) and the RMS of its pairs there; the overall RMS.
+void final_residuals(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
+                     const std::vector<Eigen::Isometry3d>& transforms, const SicpOptions& options, SicpResult& result) {
+  double sum_sq = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < transforms.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    if (surface) {
+      f.T_scan_nominal = transforms[k].inverse();
+      f.rms_mm =
+          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
+    } else {
+      f.T_scan_nominal = transforms[k];
+      f.rms_mm = f.icp.rms_mm;
+      sum_sq += f.rms_mm * f.rms_mm * static_cast<double>(f.icp.inliers);
+      count += f.icp.inliers;
+    }
+  }
+  result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+}
+
 }  // namespace
+
+bool icp_usable(const IcpResult& r) { return r.converged || r.termination == IcpTermination::kMaxIterations; }
 
 bool SicpOptions::IsValid(std::string* error) const {
   std::string why;
@@ -114,7 +214,11 @@ bool SicpOptions::IsValid(std::string* error) const {
   if (!std::isfinite(max_distance_mm) || max_distance_mm <= 0.0) return fail("maximum distance must be > 0 mm");
   if (points_per_segment < 6) return fail("points per segment must be >= 6");
   if (coarse_points < 6) return fail("coarse points must be >= 6");
-  if (max_iterations < 1) return fail("ICP iterations must be >= 1");
+  if (max_iterations < 1 || max_iterations > 1000) return fail("ICP iterations must be in [1, 1000]");
+  if (neighbourhood_mm > 1000.0 || stability_mm > 1000.0 || coarse_max_distance_mm > 1000.0 || max_distance_mm > 1000.0)
+    return fail("neighbourhood, stability and pair distances must be <= 1000 mm");
+  if (points_per_segment > 100000 || stability_points_per_segment > 100000 || coarse_points > 1000000)
+    return fail("points per segment must be <= 1e5, coarse points <= 1e6");
   return true;
 }
 
@@ -143,36 +247,18 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   const Eigen::Isometry3d T = coarse_fit(contour, locator, thin, reference, surface, options, result.coarse);
   result.T_scan_nominal_rigid = surface ? T.inverse() : T;
   report(options.progress, "sicp: coarse", 1.0);
-  result.converged = result.coarse.converged;
+  // One rule for every ICP here (icp_usable): its iteration limit is the option max_iterations, and a fit that reaches
+  // it is kept; whether its pose is good is judged by its residuals against the noise (compensation/sicp_checks.h).
+  result.converged = icp_usable(result.coarse);
   result.termination =
-      result.coarse.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
+      result.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
   result.rms_mm = result.coarse.rms_mm;
   if (options.rigid_only) return result;
 
   report(options.progress, "sicp: segments", 0.0);
-  // Each segment keeps at most points_per_segment + stability_points_per_segment; four times that many candidates in
-  // all are plenty (a segment's share of the scan is about its share of the contour).
-  const std::size_t candidates =
-      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
-  const detail::SicpSelection selection = surface ? locator.select_scan(stride_downsample(thin, candidates), T, options)
-                                                  : locator.select_contour(contour, options);
-  result.segments.resize(result.segmentation.segments.size());
-  fit_segments(selection, reference, surface, T, options, result.segments);
   std::vector<Eigen::Isometry3d> transforms;
-  for (std::size_t k = 0; k < result.segments.size(); ++k) {
-    const SicpSegmentFit& f = result.segments[k];
-    // A fit stopped by the iteration limit is still closer than the coarse pose; a failed one is not.
-    const bool usable = f.converged || f.icp.termination == IcpTermination::kMaxIterations;
-    transforms.push_back(usable ? f.icp.T_ref_scan : T);
-    if (!f.converged) {
-      result.warnings.push_back(
-          "segment " + std::to_string(k) + ": " + std::to_string(f.neighbourhood_points) +
-          " neighbourhood points, its ICP " +
-          (f.neighbourhood_points + f.stability_points < 6 ? "did not run" : to_string(f.icp.termination)) +
-          (usable ? "; its last pose is kept and" : "; it starts from the rigid pose and") +
-          " the joint refinement ties it to its neighbours");
-    }
-  }
+  const detail::SicpSelection selection =
+      register_segments(contour, locator, thin, reference, surface, T, options, result, transforms);
   report(options.progress, "sicp: segments", 1.0);
 
   if (surface && options.joint_refinement) {
@@ -180,6 +266,7 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
     std::vector<SicpJointSegment> data(transforms.size());
     for (std::size_t k = 0; k < data.size(); ++k) {
       data[k].points = stride_downsample(selection.segment_points[k], options.joint.points_per_segment);
+      data[k].along = edge_direction(contour, result.segmentation, k);
     }
     result.joint = refine_segments_jointly(data, locator.junctions(options.joint.points_per_overlap), reference,
                                            options.max_distance_mm, options.joint, transforms);
@@ -192,22 +279,7 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
     result.joint.termination = surface ? "off" : "needs a nominal surface";
   }
 
-  double sum_sq = 0.0;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < transforms.size(); ++k) {
-    SicpSegmentFit& f = result.segments[k];
-    if (surface) {
-      f.T_scan_nominal = transforms[k].inverse();
-      f.rms_mm =
-          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
-    } else {
-      f.T_scan_nominal = transforms[k];
-      f.rms_mm = f.icp.rms_mm;
-      sum_sq += f.rms_mm * f.rms_mm * static_cast<double>(f.icp.inliers);
-      count += f.icp.inliers;
-    }
-  }
-  result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+  final_residuals(selection, reference, surface, transforms, options, result);
   return result;
 }
 

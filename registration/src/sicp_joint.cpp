@@ -61,6 +61,24 @@ struct AgreementCost {
   }
 };
 
+// Damping of a segment's pose change along the edge: the displacement of its data's centroid c along the edge's
+// direction t, t . (D c - c), scaled by sqrt(weight). The data leave that slide free on a gently curved edge, where
+// the faceted nominal surface pulls at it and the overlap penalties pass it on: without damping the whole chain
+// drifts along the edge together.
+struct DampingCost {
+  Eigen::Vector3d c, t;
+  double scale;
+  template <typename T>
+  bool operator()(const T* const d, T* residual) const {
+    const T point[3] = {T(c.x()), T(c.y()), T(c.z())};
+    T moved[3];
+    ceres::AngleAxisRotatePoint(d, point, moved);
+    residual[0] = T(0.0);
+    for (int i = 0; i < 3; ++i) residual[0] += T(scale * t(i)) * (moved[i] + d[3 + i] - point[i]);
+    return true;
+  }
+};
+
 Eigen::Isometry3d pose_of(const double* d) {
   Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
   const Eigen::Vector3d w(d[0], d[1], d[2]);
@@ -122,6 +140,18 @@ ceres::Solver::Summary solve_round(const std::vector<SicpJointSegment>& segments
                                &deltas[kPose * j.left], &deltas[kPose * j.right]);
     }
   }
+  if (o.damping > 0.0) {
+    const double scale = std::sqrt(o.damping * std::max(1.0, per_segment));
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+      if (segments[k].points.empty() || segments[k].along.norm() < 0.5) continue;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& p : segments[k].points) centroid += T[k] * p;
+      centroid /= static_cast<double>(segments[k].points.size());
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DampingCost, 1, kPose>(
+                                   new DampingCost{centroid, segments[k].along.normalized(), scale}),
+                               nullptr, &deltas[kPose * k]);
+    }
+  }
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // block-tridiagonal (a ring when closed)
   options.max_num_iterations = o.max_solver_iterations;
@@ -149,6 +179,8 @@ bool SicpJointOptions::IsValid(std::string* error) const {
     why = "joint rounds must be >= 1";
   else if (max_solver_iterations < 1)
     why = "joint solver iterations must be >= 1";
+  else if (!std::isfinite(damping) || damping < 0.0)
+    why = "joint damping must be >= 0";
   else if (!std::isfinite(loss_scale_mm) || loss_scale_mm <= 0.0)
     why = "joint loss scale must be > 0 mm";
   if (why == nullptr) return true;

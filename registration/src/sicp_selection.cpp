@@ -38,31 +38,62 @@ std::vector<Eigen::Vector3d> ContourLocator::near_contour(const std::vector<Eige
   return near;
 }
 
-SicpSelection ContourLocator::select_scan(const std::vector<Eigen::Vector3d>& scan,
-                                          const Eigen::Isometry3d& T_nominal_scan, const SicpOptions& o) const {
+void ContourLocator::assign(const Eigen::Vector3d& p, int i, double d2, const SicpOptions& o,
+                            std::vector<std::vector<Eigen::Vector3d>>& near,
+                            std::vector<std::vector<Eigen::Vector3d>>& stable) const {
   const std::size_t count = segmentation_.segments.size();
-  std::vector<std::vector<Eigen::Vector3d>> near(count), stable(count);
-  const double sq_near = o.neighbourhood_mm * o.neighbourhood_mm;
-  const double sq_stable = o.stability_mm * o.stability_mm;
-  for (const Eigen::Vector3d& p : scan) {
-    float sq = 0.0f;
-    const int i = tree_.nearest((T_nominal_scan * p).cast<float>(), &sq);
-    const auto d2 = static_cast<double>(sq);
-    if (i < 0 || d2 > sq_stable) continue;
-    const double s = segmentation_.arc_length_mm[static_cast<std::size_t>(i)];
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!segmentation_.reaches(k, s)) continue;
-      (d2 <= sq_near ? near : stable)[k].push_back(p);
-    }
+  if (i < 0 || d2 > o.stability_mm * o.stability_mm) return;
+  const double s = segmentation_.arc_length_mm[static_cast<std::size_t>(i)];
+  const std::size_t core = segmentation_.core_at(s);
+  // Only the core's segment and its neighbours can reach s; each is tried once (2 or fewer segments repeat).
+  const std::size_t candidates[3] = {(core + count - 1) % count, core, (core + 1) % count};
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t k = candidates[c];
+    if ((c == 1 && k == candidates[0]) || (c == 2 && (k == candidates[0] || k == candidates[1]))) continue;
+    if (!segmentation_.reaches(k, s)) continue;
+    (d2 <= o.neighbourhood_mm * o.neighbourhood_mm ? near : stable)[k].push_back(p);
   }
+}
+
+SicpSelection ContourLocator::thin_out(std::vector<std::vector<Eigen::Vector3d>>& near,
+                                       std::vector<std::vector<Eigen::Vector3d>>& stable, const SicpOptions& o) const {
   SicpSelection selection;
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = 0; k < near.size(); ++k) {
     std::vector<Eigen::Vector3d> points = stride_downsample(near[k], o.points_per_segment);
     selection.neighbourhood_counts.push_back(points.size());
     for (const Eigen::Vector3d& p : stride_downsample(stable[k], o.stability_points_per_segment)) points.push_back(p);
     selection.segment_points.push_back(std::move(points));
   }
   return selection;
+}
+
+SicpSelection ContourLocator::select_scan(const std::vector<Eigen::Vector3d>& scan,
+                                          const Eigen::Isometry3d& T_nominal_scan, const SicpOptions& o) const {
+  const std::size_t count = segmentation_.segments.size();
+  std::vector<std::vector<Eigen::Vector3d>> near(count), stable(count);
+  for (const Eigen::Vector3d& p : scan) {
+    float sq = 0.0f;
+    const int i = tree_.nearest((T_nominal_scan * p).cast<float>(), &sq);
+    assign(p, i, static_cast<double>(sq), o, near, stable);
+  }
+  return thin_out(near, stable, o);
+}
+
+SicpSelection ContourLocator::reselect_scan(const std::vector<Eigen::Vector3d>& scan,
+                                            const Eigen::Isometry3d& T_nominal_scan,
+                                            const std::vector<Eigen::Isometry3d>& transforms,
+                                            const SicpOptions& o) const {
+  const std::size_t count = segmentation_.segments.size();
+  std::vector<std::vector<Eigen::Vector3d>> near(count), stable(count);
+  for (const Eigen::Vector3d& p : scan) {
+    float sq = 0.0f;
+    int i = tree_.nearest((T_nominal_scan * p).cast<float>(), &sq);
+    if (i < 0) continue;
+    const std::size_t k = segmentation_.core_at(segmentation_.arc_length_mm[static_cast<std::size_t>(i)]);
+    i = tree_.nearest((transforms[k] * p).cast<float>(), &sq);
+    assign(p, i, static_cast<double>(sq), o, near, stable);
+  }
+  return thin_out(near, stable, o);
 }
 
 SicpSelection ContourLocator::select_contour(const Polyline& contour, const SicpOptions& o) const {

@@ -3,7 +3,9 @@
 
 #include "conform/compensation/trajectory.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 
@@ -69,6 +71,53 @@ TEST(Trajectory, ToolNormalsFromAPlaneScan) {
   EXPECT_EQ(from_scan, 1u);  // the second point is far from the scan: it keeps its normal
   EXPECT_LT((t.normals[0] - n).norm(), 1e-9);
   EXPECT_EQ(t.normals[1], Eigen::Vector3d::UnitZ());
+}
+
+TEST(Trajectory, SmoothedToolNormalsLoseTheJitterNotTheTurn) {
+  // A closed circle of radius 100 mm, rows 1 mm apart, normals tilted outwards by 20 degrees (they turn 0.57 degrees
+  // per row with the circle), each jittered by a seeded +-0.5 degrees: the 10 mm window leaves the turn and removes
+  // most of the jitter.
+  const int n = 628;
+  Trajectory t;
+  std::vector<Eigen::Vector3d> truth;
+  std::uint64_t state = 7;
+  const auto jitter = [&]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * M_PI / 180.0;
+  };
+  for (int i = 0; i < n; ++i) {
+    const double a = 2.0 * M_PI * i / n;
+    const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0.0);
+    t.points.push_back(100.0 * radial);
+    const Eigen::Vector3d normal = (std::cos(0.35) * Eigen::Vector3d::UnitZ() + std::sin(0.35) * radial).normalized();
+    truth.push_back(normal);
+    const Eigen::Vector3d tangent(-std::sin(a), std::cos(a), 0.0);
+    t.normals.push_back((Eigen::AngleAxisd(jitter(), tangent) * Eigen::AngleAxisd(jitter(), radial) * normal));
+  }
+  const auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  double before = 0.0;
+  for (int i = 0; i < n; ++i) before = std::max(before, angle(t.normals[i], t.normals[(i + 1) % n]));
+  smooth_tool_normals(t, 10.0);
+  double step = 0.0, error = 0.0;
+  for (int i = 0; i < n; ++i) {
+    step = std::max(step, angle(t.normals[i], t.normals[(i + 1) % n]));
+    error = std::max(error, angle(t.normals[i], truth[static_cast<std::size_t>(i)]));
+    EXPECT_NEAR(t.normals[static_cast<std::size_t>(i)].norm(), 1.0, 1e-12);
+  }
+  const double true_step = angle(truth[0], truth[1]);  // 0.196 degrees: the tilted normal's turn per row
+  EXPECT_GT(before, true_step + 0.5);
+  EXPECT_LT(step, true_step + 0.1);
+  EXPECT_LT(error, 0.3);  // the window's mean of a turning normal is within a hundredth of a degree of the truth
+  // An open path's ends average over one side only; a zero window changes nothing.
+  Trajectory open{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {30, 0, 0}}, {{0, 0, 1}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}}};
+  const Trajectory unchanged = open;
+  smooth_tool_normals(open, 0.0);
+  EXPECT_EQ(open.normals, unchanged.normals);
+  smooth_tool_normals(open, 2.0);
+  EXPECT_LT((open.normals[1] - Eigen::Vector3d(0, 1, 1).normalized()).norm(), 1e-12);  // rows 0 and 2 at weight 1/2
+  EXPECT_EQ(open.normals[3], Eigen::Vector3d(1, 0, 0));                                // no neighbour within 2 mm
 }
 
 TEST(Trajectory, BadTrajectoriesAreRejected) {

@@ -44,6 +44,37 @@ TEST(Panel, PlateContourTrajectoryAndTruth) {
   EXPECT_EQ(loops.size(), 2u);
 }
 
+// The held-out harder plate: a 380 x 260 mm cut-out with 6 mm corners (perimeter 2 (380 + 260) - 8 r + 2 pi r =
+// 1269.7 mm, 0.2% more for the slope) and the seeded smooth field alone (sag, bend, twist and the rigid motion off):
+// the truth moves by at most field_mm along z and field_mm / 2 along x and y, by a good part of it somewhere, and
+// another seed gives another field.
+TEST(Panel, HarderPlateCutOutAndSmoothField) {
+  PanelOptions o = harder_plate(PlateOpening::kRoundedRectangle, 3);
+  o.scan_points = 2000;
+  o.contour_spacing_mm = 1.0;
+  o.surface_edge_mm = 4.0;
+  o.sag_mm = o.bend_mm = o.twist_mm = 0.0;
+  o.rotation_deg.setZero();
+  o.translation_mm.setZero();
+  const PanelData d = generate_panel(o);
+  EXPECT_NEAR(d.perimeter_mm, 1269.7 * 1.002, 3.0);
+  Eigen::Vector3d largest = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < d.truth.points.size(); ++i) {
+    const Eigen::Vector3d moved = d.truth.points[i] - d.trajectory.points[i];
+    largest = largest.cwiseMax(moved.cwiseAbs());
+  }
+  EXPECT_LE(largest.z(), o.field_mm);
+  EXPECT_LE(largest.x(), 0.5 * o.field_mm);
+  EXPECT_LE(largest.y(), 0.5 * o.field_mm);
+  EXPECT_GT(largest.norm(), 0.2 * o.field_mm);
+  PanelOptions other = o;
+  other.seed = 4;
+  EXPECT_GT((deform_point(other, d.trajectory.points[0]) - d.truth.points[0]).norm(), 1e-3);
+  PanelOptions bad = o;
+  bad.corner_radius_mm = 200.0;  // more than half the 260 mm side
+  EXPECT_THROW(generate_panel(bad), Error);
+}
+
 TEST(Panel, ZeroDeformationLeavesTheTruthNominal) {
   PanelOptions o = small(PanelShape::kNoseCone);
   o.ovality_mm = o.droop_mm = 0.0;

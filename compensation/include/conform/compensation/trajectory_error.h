@@ -25,6 +25,9 @@ struct TrajectoryError {
   // junction shows here. Compare with the truth's own (truth_step_mm), which is what a smooth deformation gives.
   double max_step_mm = 0.0;
   double truth_step_mm = 0.0;
+  // The largest turn of the tool normal from one row to the next, degrees, and the truth's own.
+  double normal_step_max_deg = 0.0;
+  double truth_normal_step_max_deg = 0.0;
 };
 
 // The three trajectories must have the same number of rows (conform::Error otherwise).

@@ -4,8 +4,8 @@
 // scanned around the opening, with the deburring trajectory along the opening's edge and its deformed ground truth.
 //
 // Shapes, in the panel's own frame (mm):
-//   plate:    z = x^2 / (2 Rx) + y^2 / (2 Ry) (double curvature), the porthole an ellipse (or a circle) centred at
-//             (porthole_x, porthole_y); clamps along x = +-clamp_span / 2.
+//   plate:    z = x^2 / (2 Rx) + y^2 / (2 Ry) (double curvature), the porthole an ellipse (or a circle, or a rounded
+//             rectangle) centred at (porthole_x, porthole_y); clamps along x = +-clamp_span / 2.
 //   nosecone: a barrel of radius R about the x axis, S(x, s) = (x, R sin(s / R), R cos(s / R)), s the arc length
 //             from the top; the opening a trapezoid in (x, s): bottom edge (x = -h/2) wide w_bottom, top edge (x =
 //             +h/2) wide w_top, corners rounded with corner_radius (0: sharp).
@@ -30,6 +30,9 @@
 namespace conform {
 
 enum class PanelShape { kPlate, kNoseCone };
+// The plate's opening: an ellipse (the porthole) or a rectangle porthole_width x porthole_height with corners rounded
+// to corner_radius_mm (a cut-out).
+enum class PlateOpening { kEllipse, kRoundedRectangle };
 
 struct PanelOptions {
   PanelShape shape = PanelShape::kPlate;
@@ -40,7 +43,8 @@ struct PanelOptions {
   double porthole_width_mm = 380.0;   // along x
   double porthole_height_mm = 260.0;  // along y; equal to the width (or round = true) for a round porthole
   bool round = false;                 // a circle of diameter porthole_width
-  double porthole_x_mm = 60.0;        // centre, off the clamps' middle so the sag is not symmetric about it
+  PlateOpening opening = PlateOpening::kEllipse;
+  double porthole_x_mm = 60.0;  // centre, off the clamps' middle so the sag is not symmetric about it
   double porthole_y_mm = 30.0;
   double clamp_span_mm = 1000.0;  // L: clamps at x = +-L/2
 
@@ -49,7 +53,7 @@ struct PanelOptions {
   double window_height_mm = 440.0;   // h, along x
   double window_bottom_mm = 900.0;   // w_bottom, arc length at x = -h/2
   double window_top_mm = 600.0;      // w_top, arc length at x = +h/2
-  double corner_radius_mm = 3.0;     // 0: sharp corners
+  double corner_radius_mm = 3.0;     // 0: sharp corners (also the plate's rounded rectangle)
   double barrel_length_mm = 1400.0;  // L of the droop
 
   // --- both ---
@@ -67,11 +71,15 @@ struct PanelOptions {
   double hole_radius_mm = 10.0;
 
   // --- the deformation ---
-  double sag_mm = 4.0;                                               // plate: mid-span sag between the clamps
-  double bend_mm = 1.5;                                              // plate: bending across
-  double twist_mm = 1.5;                                             // plate: twist
-  double ovality_mm = 3.0;                                           // nose cone
-  double droop_mm = 4.0;                                             // nose cone
+  double sag_mm = 4.0;      // plate: mid-span sag between the clamps
+  double bend_mm = 1.5;     // plate: bending across
+  double twist_mm = 1.5;    // plate: twist
+  double ovality_mm = 3.0;  // nose cone
+  double droop_mm = 4.0;    // nose cone
+  // Both: a seeded smooth non-rigid field (three sine waves per axis, wavelengths 1-2 x field_wavelength, random
+  // directions and phases): |D_z| <= field_mm, |D_x|, |D_y| <= field_mm / 2 (in the plane: it moves the edge across).
+  double field_mm = 0.0;
+  double field_wavelength_mm = 400.0;
   Eigen::Vector3d rotation_deg = Eigen::Vector3d(0.3, -0.2, 0.4);    // G: rotation vector, degrees
   Eigen::Vector3d translation_mm = Eigen::Vector3d(1.5, -1.0, 2.0);  // G: translation
 
@@ -83,5 +91,11 @@ struct PanelOptions {
 };
 
 const char* to_string(PanelShape shape);
+const char* to_string(PlateOpening opening);
+
+// The held-out harder plates of the S-ICP docs and tests: the default plate plus a smooth field of 6 mm (up to ~7 mm
+// of non-rigid displacement over the part with the sag), 0.05 mm noise, and the given opening (rounded rectangle
+// with 6 mm corners).
+PanelOptions harder_plate(PlateOpening opening, std::uint64_t seed);
 
 }  // namespace conform

@@ -4,8 +4,8 @@
 // optionally the nominal surface around the contour; registers (registration/sicp.h) and maps the trajectory onto
 // the part by one of three models: Subdivision-ICP (blended segment transforms), one rigid transform, or the rigid
 // transform plus a smooth height field (the paper's projection model); re-estimates the tool normals from the scan.
-// Writes the compensated trajectory (same rows, same order) only when the registration converged, whole or not at
-// all. Given the ground-truth trajectory (generated data), it reports the error.
+// Writes the compensated trajectory (same rows, same order) only when the registration converged and the path passed
+// its checks (compensation/sicp_checks.h), whole or not at all. Given the ground-truth trajectory (generated data), it reports the error.
 
 #include <cstddef>
 #include <optional>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "conform/compensation/projection_model.h"
+#include "conform/compensation/sicp_checks.h"
 #include "conform/compensation/trajectory.h"
 #include "conform/compensation/trajectory_error.h"
 #include "conform/core/mesh.h"
@@ -31,6 +32,7 @@ struct SicpCompensationOptions {
   SicpOptions sicp;  // its scan_voxel_mm thins the scan once, for the registration and the tool normals
   ProjectionOptions projection;
   ToolNormalOptions normals;
+  SicpCheckOptions checks;
 };
 
 struct SicpCompensationResult {
@@ -39,11 +41,15 @@ struct SicpCompensationResult {
   ProjectionModel projection;  // kProjection
   Trajectory trajectory;       // compensated, same rows as the nominal one
   std::size_t normals_from_scan = 0;
-  bool converged = false;
+  SicpCheck check;         // noise, blind and outlier segments, per-row split and confidence
+  bool converged = false;  // the registration converged
+  bool trusted = false;    // converged, and every row passed the checks (check.reason says why not)
   std::string termination;
 };
 
-// surface: the nominal surface around the contour (nullptr: contour-only registration). scan: the deformed part.
+// surface: the nominal surface around the contour; nullptr (contour-only, the paper's variant) is refused with a
+// conform::Error: without edge points found in the scan (the paper's section 2.1, not done here) the contour's points
+// pair with the surface beside the edge and the path comes out worse than rigid. scan: the deformed part.
 SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh* surface,
                                              const std::vector<Eigen::Vector3d>& scan, const Trajectory& nominal,
                                              const SicpCompensationOptions& options);
@@ -55,6 +61,7 @@ struct SicpJobOptions {
   std::string surface_path;         // optional nominal surface mesh; a mesh contour is its own surface
   std::string truth_path;           // optional ground-truth trajectory, same columns and rows: errors reported
   std::string out_trajectory_path;  // optional
+  std::string out_rows_path;        // optional: per-row correction split and confidence (CSV), written with the above
   SicpCompensationOptions compensation;
   ProgressFn progress;  // "read", the registration's stages, "normals", "write"
   bool IsValid(std::string* error) const;
@@ -71,6 +78,7 @@ struct SicpJobResult {
   std::optional<TrajectoryError> error;  // when a truth was given
   std::vector<std::string> warnings;
   std::string out_trajectory_path;  // written; empty when not
+  std::string out_rows_path;        // written; empty when not
 };
 
 // Throws conform::Error for bad input (files, columns, rows, a contour mesh without boundary); not converging is

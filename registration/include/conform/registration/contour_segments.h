@@ -8,6 +8,7 @@
 // Positions along the contour are arc lengths s in mm from its first point; on a closed contour they wrap at its
 // length L (the closing edge included).
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -16,12 +17,15 @@
 namespace conform {
 
 struct ContourSegmentationOptions {
-  double segment_length_mm = 40.0;  // epsilon: the longest segment (its core, overlaps excluded), > 0
+  double segment_length_mm = 40.0;  // epsilon: the longest segment (its core, overlaps excluded), in [1, 1e5] mm
   // Each junction's overlap, as a share of the shorter of the two segments that meet there, in (0, 1). The paper
   // uses 20-40%; the overlap is centred on the junction.
   double overlap = 0.3;
   double curvature_radius_mm = 15.0;  // a point whose osculating radius is below this is a corner candidate; 0: none
   double curvature_window_mm = 2.0;   // the osculating circle passes through the points this far before and after
+  // The most segments a contour may be cut into, checked before anything is allocated for them (each segment costs an
+  // ICP): a contour point far off (a unit error) or a tiny segment length is refused, naming this limit. >= 1.
+  std::size_t max_segments = 2000;
   bool IsValid(std::string* error) const;
 };
 
@@ -46,6 +50,9 @@ struct ContourSegmentation {
   double ahead(double from, double s) const;
   // Does segment k reach s (its core plus its overlaps)?
   bool reaches(std::size_t k, double s) const;
+  // The segment whose core holds s (binary search; beyond an open contour's ends, the end segment). Only it and its
+  // two neighbours can reach s: an overlap is shorter than either segment it joins.
+  std::size_t core_at(double s) const;
 };
 
 // Arc length of every point from the first (mm).
@@ -56,7 +63,8 @@ std::vector<double> arc_lengths(const Polyline& contour);
 // open contour the window is clamped to the ends.
 std::vector<double> osculating_radii(const Polyline& contour, double window_mm);
 
-// Throws conform::Error for invalid options, fewer than 3 points, a non-finite point or a contour of zero length.
+// Throws conform::Error for invalid options, fewer than 3 points, a non-finite point, a contour of zero length or one
+// that would need more than max_segments segments.
 ContourSegmentation segment_contour(const Polyline& contour, const ContourSegmentationOptions& options);
 
 }  // namespace conform

@@ -41,7 +41,9 @@ struct SicpOptions {
   std::size_t coarse_points = 2000;               // points of the coarse rigid ICP, at most (even stride)
   std::size_t points_per_segment = 150;           // neighbourhood points per segment, at most (even stride)
   std::size_t stability_points_per_segment = 50;  // stability points per segment, at most
-  int max_iterations = 30;                        // per ICP
+  int max_iterations = 30;  // per ICP (coarse and segments alike), in [1, 1000]; reaching it is no failure
+  bool coarse_segment_pass = true;  // each segment's ICP first at coarse_max_distance_mm, then at max_distance_mm
+  bool reselect = true;  // with a surface: each segment's scan selected again at its own pose, its ICP run again
   bool joint_refinement = true;
   SicpJointOptions joint;
   bool rigid_only = false;  // stop after the coarse rigid ICP (the rigid and projection models need nothing more)
@@ -56,7 +58,8 @@ struct SicpSegmentFit {
   std::size_t neighbourhood_points = 0;  // in the segment's ICP
   std::size_t stability_points = 0;
   double rms_mm = 0.0;     // of the segment's pairs at its final transform (after the joint refinement)
-  bool converged = false;  // its ICP converged; otherwise its transform is its neighbours' (or the coarse one)
+  bool converged = false;  // its ICP converged
+  bool usable = false;     // its ICP ran and is usable (icp_usable); otherwise it starts from the coarse pose
 };
 
 struct SicpResult {
@@ -67,10 +70,14 @@ struct SicpResult {
   SicpJointReport joint;
   std::size_t scan_points_used = 0;   // after thinning
   double rms_mm = 0.0;                // over every segment's pairs
-  bool converged = false;             // the coarse ICP converged, and so did the joint refinement when it ran
+  bool converged = false;             // the coarse ICP is usable, and so was the joint refinement when it ran
   std::string termination;            // "converged", or why not
   std::vector<std::string> warnings;  // segments without enough scan data, ...
 };
+
+// One rule for every ICP of S-ICP: converged, or stopped at the iteration limit (SicpOptions::max_iterations) with a
+// pose that the residual checks then judge; any other termination (too few pairs, ...) is a failure.
+bool icp_usable(const IcpResult& result);
 
 // contour: nominal, ordered. nominal_surface: the CAD surface around it (nullptr: contour-only, point-to-point).
 // scan: points of the deformed part, mm, roughly in place (the coarse ICP pairs points within

@@ -4,7 +4,8 @@
 //   data terms:    for every point p of segment k paired with the nominal surface at q with normal n,
 //                  rho(n . (T_k p - q)), rho a Huber loss (the segment ICP's point-to-surface distance);
 //   penalty terms: for shared overlap points c of neighbouring segments k and l (nominal contour points where both
-//                  reach), w |T_k^-1 c - T_l^-1 c|^2: the two transforms' disagreement on where c is on the part.
+//                  reach), w |T_k^-1 c - T_l^-1 c|^2: the two transforms' disagreement on where c is on the part;
+//   damping terms: each segment's slide along the edge (its data's centroid) away from its own ICP's pose.
 // Pairs are found again at the new poses between solves. T_k maps scan to nominal (T_nominal_scan).
 
 #include <cstddef>
@@ -22,8 +23,14 @@ struct SicpJointOptions {
   // Weight of a neighbour's disagreement against the data: the penalty of a junction counts as much as this many
   // times the data terms of one segment when its disagreement equals a data residual. > 0.
   // Too strong and the segments cannot follow a stretch along a straight edge (which no segment sees on its own);
-  // too weak and a segment's slide along a gently curved edge is left to noise. 0.1 suits both generated panels.
-  double weight = 0.1;
+  // too weak and a segment's slide along a gently curved edge is left to noise. 0.01 from the seed sweep in
+  // docs/sicp.md (plate, nose cone, harder oval and cut-out): 0.1 dragged corner segments off by up to 1.1 mm.
+  double weight = 0.01;
+  // Weight of each segment's slide along the edge (from its own ICP's pose) against its data, the same scale as
+  // `weight`: the data leave that slide nearly free on a gently curved edge, and without it the whole chain of
+  // segments drifts along the edge together (1.4 mm on an open arc of the plate). 1e-4 stops that drift yet lets
+  // a corner's hold pass along a straight edge (1e-2 kept wrong slides on the cut-out). >= 0.
+  double damping = 1e-4;
   std::size_t points_per_overlap = 8;    // shared overlap points per junction (even along the overlap), >= 1
   std::size_t points_per_segment = 120;  // data points per segment, at most (even stride over the segment's ICP points)
   int rounds = 2;                        // pairing + solve rounds, >= 1
@@ -47,6 +54,7 @@ struct SicpJointReport {
 // One segment's data: its points in the scan frame.
 struct SicpJointSegment {
   std::vector<Eigen::Vector3d> points;
+  Eigen::Vector3d along = Eigen::Vector3d::Zero();  // the edge's direction there (nominal frame); zero: no damping
 };
 // Shared overlap points (nominal frame) of neighbouring segments `left` and `right`.
 struct SicpJointJunction {

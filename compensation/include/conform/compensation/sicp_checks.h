@@ -1,0 +1,74 @@
+#pragma once
+// Can a Subdivision-ICP path be trusted? A robot cuts along it, so a plausible wrong path is the worst outcome. The
+// checks measure what the registration itself shows (beyond the paper, which reports no such figures):
+//   - noise: measured on the scan alone (plane fits over a few mm, estimate_scan_noise), so that a registration that
+//     fits every segment badly cannot raise its own bar;
+//   - blind segments: fewer edge (neighbourhood) scan points than min_edge_points: where the edge is, nothing measured
+//     it, and the segment's pose is its neighbours' guess;
+//   - outlier segments: a residual RMS above outlier_ratio times the noise (the segment did not find the part);
+//   - rows far from the contour: the segment transforms describe the part near the contour only.
+// Each row gets a confidence in [0, 1] (its segments' blended confidence) and its correction split into the
+// compensated row's frame: across the edge (in the surface), along the tool axis, along the path.
+//
+//   const SicpCheck c = check_sicp_path(contour, registration, nominal, compensated, SicpCheckOptions{});
+//   if (!c.trusted) ...  // c.reason says why and what to change
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "conform/compensation/trajectory.h"
+#include "conform/core/nearest_neighbors.h"
+#include "conform/core/polyline.h"
+#include "conform/registration/sicp.h"
+
+namespace conform {
+
+struct SicpCheckOptions {
+  std::size_t min_edge_points = 10;  // edge (neighbourhood) scan points a segment needs to measure its rows; 0: any
+  double outlier_ratio = 4.0;        // a segment's residual RMS above this times the noise is an outlier, > 1
+  double max_offset_mm = 10.0;       // rows farther than this from the nominal contour cannot be trusted, > 0
+  double min_confidence = 0.5;       // a row below this confidence makes the path untrusted, in [0, 1]
+  bool IsValid(std::string* error) const;
+};
+
+struct SicpRowReport {
+  // The correction (compensated - nominal position) in the compensated row's frame, mm: across the edge in the
+  // surface (tool axis x path direction), along the tool axis, along the path.
+  double across_mm = 0.0;
+  double axis_mm = 0.0;
+  double along_mm = 0.0;
+  double confidence = 0.0;           // [0, 1]: 1 measured by segments with edge data and residuals at the noise
+  double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
+};
+
+struct SicpCheck {
+  double noise_mm = 0.0;                      // the scan's noise (or, without it, the median segment residual RMS)
+  std::vector<std::size_t> blind_segments;    // fewer edge points than min_edge_points
+  std::vector<std::size_t> bare_segments;     // no stability (surface) points either
+  std::vector<std::size_t> outlier_segments;  // residual RMS > outlier_ratio * noise, or ICP not usable
+  std::vector<double> segment_confidence;     // per segment, [0, 1]
+  std::vector<SicpRowReport> rows;            // one per trajectory row
+  std::size_t untrusted_rows = 0;             // confidence below min_confidence
+  std::size_t far_rows = 0;                   // farther than max_offset_mm from the contour
+  double min_confidence = 0.0;
+  bool trusted = false;  // the registration converged and every row has min_confidence
+  std::string reason;    // when not trusted: why, and what to change
+  std::vector<std::string> warnings;
+};
+
+// The scan's noise, measured on the scan alone (not on the fit, which a wrong registration inflates): the median,
+// over up to `samples` scan points taken evenly, of the residual RMS of the plane fitted to each one's `neighbours`
+// nearest scan points, scaled by sqrt(k / (k - 3)) for the fit's three degrees of freedom (k points). The median
+// leaves out the planes that straddle an edge. 0 for fewer than 4 points. tree indexes scan.
+double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours = 20,
+                           std::size_t samples = 400);
+
+// registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
+// their distance from the contour only). nominal, compensated: same rows. Throws conform::Error for invalid options
+// or trajectories of different lengths.
+// scan_noise_mm: estimate_scan_noise of the scan the registration used (0: the median segment RMS stands in).
+SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& registration, const Trajectory& nominal,
+                          const Trajectory& compensated, const SicpCheckOptions& options, double scan_noise_mm = 0.0);
+
+}  // namespace conform

@@ -1,0 +1,131 @@
+// The S-ICP path checks (compensation/sicp_checks.h) on hand-made registrations with known answers: the correction
+// split along a straight path, the noise estimate and outlier segments, blind segments and rows far from the contour.
+
+#include "conform/compensation/sicp_checks.h"
+
+#include <gtest/gtest.h>
+
+#include "conform/core/error.h"
+#include "conform/datasets/random.h"
+
+namespace conform {
+namespace {
+
+// A straight open contour along x, 400 mm, points 1 mm apart; the trajectory on it, tool axis +z, rows 1 mm apart.
+struct Line {
+  Polyline contour;
+  Trajectory nominal;
+  SicpResult registration;
+};
+
+Line line(std::size_t segments_rms_bad = 0) {
+  Line l;
+  for (int i = 0; i <= 400; ++i) l.contour.points.emplace_back(i, 0.0, 0.0);
+  for (int i = 0; i <= 400; ++i) {
+    l.nominal.points.emplace_back(i, 0.0, 0.0);
+    l.nominal.normals.push_back(Eigen::Vector3d::UnitZ());
+  }
+  ContourSegmentationOptions o;
+  o.segment_length_mm = 40.0;
+  l.registration.segmentation = segment_contour(l.contour, o);
+  l.registration.converged = true;
+  l.registration.segments.resize(l.registration.segmentation.segments.size());
+  for (std::size_t k = 0; k < l.registration.segments.size(); ++k) {
+    SicpSegmentFit& f = l.registration.segments[k];
+    f.usable = true;
+    f.neighbourhood_points = 150;
+    f.stability_points = 50;
+    f.rms_mm = k < segments_rms_bad ? 1.1 : 0.04 + 0.001 * static_cast<double>(k % 3);
+  }
+  return l;
+}
+
+TEST(SicpChecks, CorrectionSplitAcrossAxisAlong) {
+  const Line l = line();
+  Trajectory moved = l.nominal;
+  for (Eigen::Vector3d& p : moved.points) p += Eigen::Vector3d(1.0, 2.0, 3.0);
+  const SicpCheck c = check_sicp_path(l.contour, l.registration, l.nominal, moved, SicpCheckOptions{});
+  ASSERT_EQ(c.rows.size(), l.nominal.points.size());
+  for (const SicpRowReport& r : c.rows) {
+    EXPECT_NEAR(r.along_mm, 1.0, 1e-9);   // the path runs along +x
+    EXPECT_NEAR(r.across_mm, 2.0, 1e-9);  // z x x = +y, in the surface
+    EXPECT_NEAR(r.axis_mm, 3.0, 1e-9);
+    EXPECT_NEAR(r.confidence, 1.0, 1e-9);
+    EXPECT_NEAR(r.contour_distance_mm, 0.0, 1e-6);
+  }
+  EXPECT_TRUE(c.trusted) << c.reason;
+  EXPECT_NEAR(c.noise_mm, 0.041, 0.0011);  // the median of 0.040, 0.041, 0.042
+  EXPECT_TRUE(c.warnings.empty());
+}
+
+// The case: three segments end at 1.1 mm RMS, the others at 0.04 mm: outliers, their rows untrusted.
+TEST(SicpChecks, OutlierSegmentsMakeThePathUntrusted) {
+  const Line l = line(3);
+  const SicpCheck c = check_sicp_path(l.contour, l.registration, l.nominal, l.nominal, SicpCheckOptions{});
+  EXPECT_EQ(c.outlier_segments, (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_LT(c.noise_mm, 0.05);
+  EXPECT_FALSE(c.trusted);
+  EXPECT_GT(c.untrusted_rows, 80u);  // three 40 mm segments' cores, less the blend into the next
+  EXPECT_EQ(c.rows.back().confidence, 1.0);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("far worse"), std::string::npos);
+}
+
+TEST(SicpChecks, BlindSegmentsAndFarRows) {
+  Line l = line();
+  l.registration.segments[4].neighbourhood_points = 3;  // the edge unscanned there
+  l.registration.segments[4].stability_points = 0;
+  Trajectory nominal = l.nominal;
+  nominal.points[400].y() = 25.0;  // the last row 25 mm off the contour
+  const SicpCheck c = check_sicp_path(l.contour, l.registration, nominal, nominal, SicpCheckOptions{});
+  EXPECT_EQ(c.blind_segments, (std::vector<std::size_t>{4}));
+  EXPECT_EQ(c.bare_segments, (std::vector<std::size_t>{4}));
+  EXPECT_EQ(c.far_rows, 1u);
+  EXPECT_EQ(c.rows[180].confidence, 0.0);  // in segment 4's core (160-200 mm)
+  EXPECT_FALSE(c.trusted);
+  EXPECT_EQ(c.warnings.size(), 3u);
+  // Rows guessed from the neighbours accepted on request (min_edge_points 0); the far row still is not.
+  SicpCheckOptions o;
+  o.min_edge_points = 0;
+  const SicpCheck accepted = check_sicp_path(l.contour, l.registration, nominal, nominal, o);
+  EXPECT_TRUE(accepted.blind_segments.empty());
+  EXPECT_EQ(accepted.untrusted_rows, 1u);
+}
+
+TEST(SicpChecks, NotConvergedIsNotTrustedAndBadInputThrows) {
+  Line l = line();
+  l.registration.converged = false;
+  l.registration.termination = "coarse ICP: too_few_correspondences";
+  const SicpCheck c = check_sicp_path(l.contour, l.registration, l.nominal, l.nominal, SicpCheckOptions{});
+  EXPECT_FALSE(c.trusted);
+  EXPECT_NE(c.reason.find("too_few_correspondences"), std::string::npos);
+  Trajectory shorter = l.nominal;
+  shorter.points.pop_back();
+  shorter.normals.pop_back();
+  EXPECT_THROW(check_sicp_path(l.contour, l.registration, l.nominal, shorter, SicpCheckOptions{}), Error);
+  SicpCheckOptions bad;
+  bad.outlier_ratio = 1.0;
+  EXPECT_THROW(check_sicp_path(l.contour, l.registration, l.nominal, l.nominal, bad), Error);
+}
+
+// A gently curved sheet (radius 2500 mm) with a flank along one edge, Gaussian noise sigma 0.05 mm: the estimate
+// is the sigma within 10% (the flank's planes are a minority the median leaves out).
+TEST(SicpChecks, ScanNoiseFromPlaneFits) {
+  Random random(5, 0);
+  std::vector<Eigen::Vector3d> scan;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = random.uniform(0.0, 200.0), y = random.uniform(0.0, 40.0);
+    scan.emplace_back(x, y, x * x / 5000.0 + 0.05 * random.normal());
+  }
+  for (int i = 0; i < 2000; ++i) {
+    const double x = random.uniform(0.0, 200.0);
+    scan.emplace_back(x, 0.05 * random.normal(), x * x / 5000.0 - random.uniform(0.0, 4.0));
+  }
+  const KdTree tree(scan);
+  EXPECT_NEAR(estimate_scan_noise(scan, tree), 0.05, 0.005);
+  EXPECT_EQ(estimate_scan_noise({{0, 0, 0}, {1, 0, 0}}, KdTree(std::vector<Eigen::Vector3d>{{0, 0, 0}, {1, 0, 0}})),
+            0.0);
+}
+
+}  // namespace
+}  // namespace conform
