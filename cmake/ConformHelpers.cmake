@@ -46,7 +46,7 @@ function(conform_add_tests module)
     set(target ${module}_${name})
     add_executable(${target} ${source})
     target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main conform_warnings
-                                            conform_test_support)
+                                            conform_test_support conform_pcl_all)
     target_compile_definitions(${target} PRIVATE ${ARG_DEFINITIONS})
     gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
   endforeach()
