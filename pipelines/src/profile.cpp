@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +10,7 @@
 #include "conform/core/atomic_file.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/input_file.h"
 
 namespace conform {
 namespace {
@@ -101,14 +100,10 @@ ProfileFeature feature_from_json(const nlohmann::json& j, const std::string& whe
 }
 
 std::vector<ProfileFeature> read_features_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the features file");
-  std::ostringstream text;
-  text << in.rdbuf();
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
+    j = nlohmann::json::parse(read_input_file(path));
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number such as 1e400
     throw Error(path + ": not valid JSON: " + e.what());
   }
   if (!j.is_object() || !j.contains("features") || !j.at("features").is_array()) {
