@@ -8,6 +8,15 @@ target_compile_options(conform_warnings INTERFACE -ffp-contract=off)
 if(CONFORM_WERROR)
   target_compile_options(conform_warnings INTERFACE -Werror)
 endif()
+if(CONFORM_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "CONFORM_BUILD_FUZZ needs clang (libFuzzer): -DCMAKE_CXX_COMPILER=clang++-14")
+  endif()
+  target_compile_options(conform_warnings INTERFACE -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                                                    -fno-sanitize-recover=undefined)
+  target_link_options(conform_warnings INTERFACE -fsanitize=address,undefined)
+  target_compile_definitions(conform_warnings INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=1)  # see CONFORM_SANITIZE
+endif()
 if(CONFORM_SANITIZE)
   target_compile_options(conform_warnings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
                                                     -fno-sanitize-recover=undefined)
