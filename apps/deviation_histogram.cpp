@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "deviation_colours.h"
+#include "png_writer.h"
 
 namespace conform::app {
 namespace {
@@ -154,9 +154,7 @@ std::string deviation_histogram_png(const std::vector<double>& deviation_mm, con
            {kPlot.x + kPlot.width, kHistogramHeight - 8}, 0.4, kDark, 1.0);
     }
   }
-  std::vector<unsigned char> png;
-  cv::imencode(".png", img, png, {cv::IMWRITE_PNG_COMPRESSION, 9});
-  return std::string(png.begin(), png.end());
+  return encode_png_bgr(img.ptr(), img.cols, img.rows, img.step[0]);
 }
 
 }  // namespace conform::app

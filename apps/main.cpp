@@ -7,11 +7,14 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <new>
+#include <stdexcept>
 
 #include <pcl/console/print.h>
 #include <CLI/CLI.hpp>
 
 #include "command.h"
+#include "terminal.h"
 #include "conform/core/error.h"
 
 namespace conform::app {
@@ -99,10 +102,21 @@ int main(int argc, char** argv) {
       return code;
     }
   } catch (const conform::Error& e) {
-    std::cerr << "conform: error: " << e.what() << std::endl;
+    std::cerr << "conform: error: " << printable(e.what()) << std::endl;
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // The input asks for more memory than the machine has (each reader already refuses counts its file cannot
+    // hold): bad input for this machine, not a fault of conform.
+    std::cerr << "conform: error: out of memory (the input needs more memory than is available; "
+                 "reduce it, e.g. downsample the scan, or run on a larger machine)"
+              << std::endl;
+    return kExitBadInput;
+  } catch (const std::length_error& e) {
+    std::cerr << "conform: error: the input asks for more elements than a container can hold (" << printable(e.what())
+              << ")" << std::endl;
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "conform: internal error: " << e.what() << std::endl;
+    std::cerr << "conform: internal error: " << printable(e.what()) << std::endl;
     return 1;
   }
   return kExitBadInput;

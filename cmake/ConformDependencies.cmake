@@ -1,11 +1,12 @@
 # All dependencies come from Debian packages; nothing is downloaded at configure time.
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
-# PCL's io component pulls VTK, whose config needs MPI's C component found first.
-find_package(MPI COMPONENTS C QUIET)
-find_package(PCL 1.12 REQUIRED COMPONENTS common io kdtree search features filters registration sample_consensus
+# Not PCL's io component: it pulls VTK and ~100 shared libraries into every start of `conform` (0.2 s); conform reads
+# and writes PCD itself. Tests that write files with pcl::io find it on their own (tests/core/CMakeLists.txt).
+find_package(PCL 1.12 REQUIRED COMPONENTS common kdtree search features filters registration sample_consensus
                                           segmentation)
 find_package(Ceres 2.0 REQUIRED)
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs)  # imgcodecs: tests decode the PNG
+find_package(ZLIB REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.9 REQUIRED)
 find_package(OpenMP REQUIRED COMPONENTS CXX)
@@ -21,5 +22,22 @@ endif()
 # so that only the modules that use PCL see them.
 add_library(conform_pcl INTERFACE)
 target_include_directories(conform_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIRS})
-target_link_libraries(conform_pcl INTERFACE ${PCL_LIBRARIES})
+# Only the PCL libraries conform's code calls: with --as-needed (apps/CMakeLists.txt) `conform` then does not load
+# pcl_segmentation (45k relocations at start-up; it also exports search::OrganizedNeighbor, which would bind there).
+target_link_libraries(conform_pcl INTERFACE ${PCL_COMMON_LIBRARIES} ${PCL_KDTREE_LIBRARIES} ${PCL_SEARCH_LIBRARIES}
+                                            ${PCL_FEATURES_LIBRARIES} ${PCL_FILTERS_LIBRARIES} ${PCL_SAMPLE_CONSENSUS_LIBRARIES})
+# Every PCL component found, for the tests and benchmarks that use PCL as a peer (ICP, SAC segmentation).
+add_library(conform_pcl_all INTERFACE)
+target_link_libraries(conform_pcl_all INTERFACE conform_pcl ${PCL_LIBRARIES})
 target_compile_definitions(conform_pcl INTERFACE ${PCL_DEFINITIONS})
+# conform_find_pcl_io(<target>...): PCL's io component (and VTK behind it) for the tests and benchmarks that write or
+# read files with pcl::io as a peer; conform itself does not link it. VTK's config needs MPI's C component found first.
+# The targets VTK's config imports are local to the calling directory, hence a call per directory.
+macro(conform_find_pcl_io)
+  find_package(MPI COMPONENTS C QUIET)
+  find_package(PCL 1.12 REQUIRED COMPONENTS common io)
+  foreach(target ${ARGN})
+    target_include_directories(${target} SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
+    target_link_libraries(${target} PRIVATE ${PCL_LIBRARIES})
+  endforeach()
+endmacro()

@@ -22,8 +22,7 @@ class FileBytes {
   std::size_t size_;
 };
 
-// Throws conform::Error naming `path` when it cannot be opened or read (with the system's reason), is not a regular
-// file, or is empty.
+// conform::read_input_file() (input_file.h) with the bytes kept as they are: the same checks, the same messages.
 FileBytes read_file_bytes(const std::string& path);
 
 }  // namespace conform::detail

@@ -1,9 +1,7 @@
 #pragma once
-// Our own check of a PCD file before PCL's reader sees it. pcl::PCDReader (PCL 1.13) allocates whatever the header
-// claims before looking at the file's size (1.2 GB for a 200-byte file claiming 10^8 points; std::bad_alloc for
-// 4e9), crashes on a header without FIELDS, turns non-numeric ascii values into 0 and short ascii lines into zeros
-// without failing, and prints its complaints to the console. So the header is validated against the file here, and
-// an ascii body token by token, and PCL is called only on files it reads correctly.
+// The header of a PCD file (PCL's Point Cloud Data format, v0.7), parsed and validated by conform itself: PCL's reader
+// is not used. One layout per file: the header's keywords end at the DATA line, and everything after it is the body
+// the header describes, whatever it looks like (a binary body may start with text such as "SIZE 8 8 8").
 
 #include <cstddef>
 #include <cstdint>
@@ -15,9 +13,11 @@ namespace conform::detail {
 
 struct PcdField {
   std::string name;
-  std::size_t size = 4;  // bytes of one value: 1, 2, 4 or 8
-  char type = 'F';       // I, U or F
+  std::size_t size = 4;  // bytes of one value: 1, 2, 4 or 8 (F: 4 or 8)
+  char type = 'F';       // I (signed), U (unsigned) or F (IEEE float)
   std::size_t count = 1;
+  std::size_t offset = 0;  // bytes from the start of a point's record (binary) or values before it (ascii: index)
+  std::size_t first_value = 0;
 };
 
 enum class PcdData { kAscii, kBinary, kBinaryCompressed };
@@ -33,11 +33,16 @@ struct PcdHeader {
 
   std::size_t point_bytes() const;
   std::size_t values_per_point() const;
+  // The field with that name and COUNT 1, or nullptr.
+  const PcdField* find(std::string_view name) const;
 };
 
-// Throws conform::Error naming `path` (and the line) unless the header is complete and consistent, has x, y and z,
-// and the body holds exactly the points it claims (for ascii: that many lines of that many numbers; for
-// binary_compressed: a payload that decompresses to them).
-PcdHeader check_pcd(const std::string& path, std::string_view bytes);
+// The most points a PCD file may hold (PCL's clouds index points with int).
+constexpr std::uint64_t kMaxPcdPoints = 2147483647;
+
+// Throws conform::Error "path:line: ..." unless the header is complete and consistent: known keywords, each at most
+// once, FIELDS before SIZE, TYPE and COUNT with one entry per field, SIZE/TYPE pairs of I1 I2 I4 I8 U1 U2 U4 U8 F4 F8,
+// fields x, y and z with COUNT 1, WIDTH x HEIGHT = POINTS <= kMaxPcdPoints, DATA ascii, binary or binary_compressed.
+PcdHeader parse_pcd_header(const std::string& path, std::string_view bytes);
 
 }  // namespace conform::detail

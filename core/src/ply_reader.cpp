@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "byte_order.h"
@@ -85,6 +86,8 @@ class BinarySource {
     throw Error(path_ + ": " + *element_ + " " + std::to_string(index_) + ": " + what);
   }
 
+  void finish() {}
+
  private:
   void need(std::size_t size) {
     if (static_cast<std::size_t>(end_ - p_) < size) {
@@ -111,18 +114,40 @@ class BinarySource {
   std::uint64_t index_ = 0;
 };
 
-// The body of an ascii PLY: whitespace-separated values; errors give the line number.
+// The body of an ascii PLY, line-aware: each item (vertex, face, ...) is one line holding exactly its values, so that
+// an extra or missing value is an error naming its line rather than a shift of every later value into the next item.
+// Blank lines are skipped; anything but blank lines after the last item is an error. Integers are checked against
+// their property's type (a uchar of 300 is an error, not 44).
 class AsciiSource {
  public:
   AsciiSource(const std::string& path, std::string_view body, std::size_t first_line)
-      : path_(path), tokens_(body, first_line) {}
+      : path_(path), lines_(body, first_line) {}
 
   void begin_item(const std::string& element, std::uint64_t index) {
+    end_line();
     element_ = &element;
     index_ = index;
+    values_ = 0;
+    while (lines_.next(rest_)) {
+      if (!trim(rest_).empty()) return;
+    }
+    fail("unexpected end of file (truncated file?)");
+  }
+
+  // After the last item: nothing but blank lines may follow.
+  void finish() {
+    end_line();
+    std::string_view line;
+    while (lines_.next(line)) {
+      if (!trim(line).empty()) {
+        throw Error(path_ + ":" + std::to_string(lines_.line_number()) +
+                    ": more lines than the header's element counts (the data ends before this line)");
+      }
+    }
   }
 
   double scalar(PlyType type) {
+    if (ply_type_is_integer(type)) return static_cast<double>(integer(type));
     const std::string_view token = next();
     // A float property is read as a float, so that ascii and binary files of the same data give the same doubles.
     if (type == PlyType::kFloat32) {
@@ -135,18 +160,21 @@ class AsciiSource {
     return value;
   }
 
-  std::int64_t integer(PlyType /*type*/) {
+  std::int64_t integer(PlyType type) {
     const std::string_view token = next();
     std::int64_t value = 0;
-    if (!parse_number(token, value)) fail(describe_bad_number(token, true));
+    const auto [lo, hi] = integer_range(type);
+    if (!parse_number(token, value) || value < lo || value > hi) {
+      fail(describe_bad_number(token, true) + " (" + std::to_string(lo) + " to " + std::to_string(hi) + ")");
+    }
     return value;
   }
 
-  void skip(PlyType /*type*/) { next(); }
+  void skip(PlyType type) { scalar(type); }
 
   void expect_list(std::uint64_t count, PlyType /*type*/) {
-    if (count > tokens_.bytes_left() / 2 + 1) {
-      fail("a list of " + std::to_string(count) + " values runs past the end of the file (truncated file?)");
+    if (count > rest_.size() / 2 + 1) {
+      fail("a list of " + std::to_string(count) + " values does not fit on its line");
     }
   }
 
@@ -154,25 +182,50 @@ class AsciiSource {
     const std::int64_t count = integer(property.count_type);
     if (count < 0) fail("negative list length " + std::to_string(count));
     expect_list(static_cast<std::uint64_t>(count), property.type);
-    for (std::int64_t i = 0; i < count; ++i) next();
+    for (std::int64_t i = 0; i < count; ++i) scalar(property.type);
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw Error(path_ + ":" + std::to_string(tokens_.line_number()) + ": " + *element_ + " " + std::to_string(index_) +
+    throw Error(path_ + ":" + std::to_string(lines_.line_number()) + ": " + *element_ + " " + std::to_string(index_) +
                 ": " + what);
   }
 
  private:
+  static std::pair<std::int64_t, std::int64_t> integer_range(PlyType type) {
+    switch (type) {
+      case PlyType::kInt8: return {-128, 127};
+      case PlyType::kUint8: return {0, 255};
+      case PlyType::kInt16: return {-32768, 32767};
+      case PlyType::kUint16: return {0, 65535};
+      case PlyType::kInt32: return {std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()};
+      default: return {0, std::numeric_limits<std::uint32_t>::max()};
+    }
+  }
+
+  void end_line() {
+    std::string_view token;
+    if (element_ != nullptr && next_token(rest_, token)) {
+      fail("more values on the line than the element's " + std::to_string(values_) + " ('" +
+           std::string(token.substr(0, 40)) + "' is one too many)");
+    }
+    rest_ = {};
+  }
+
   std::string_view next() {
     std::string_view token;
-    if (!tokens_.next(token)) fail("unexpected end of file (truncated file?)");
+    if (!next_token(rest_, token)) {
+      fail("the line ends after " + std::to_string(values_) + " values (each item is one line holding all its values)");
+    }
+    ++values_;
     return token;
   }
 
   const std::string& path_;
-  TokenStream tokens_;
+  LineScanner lines_;
+  std::string_view rest_;
   const std::string* element_ = nullptr;
   std::uint64_t index_ = 0;
+  std::size_t values_ = 0;
 };
 
 // Which vertex property goes where: 0-2 x y z, 3-5 the normal, -1 ignored.
@@ -248,10 +301,18 @@ void read_vertices(Source& src, const PlyElement& element, const VertexPlan& pla
   }
 }
 
+constexpr std::int64_t kMaxPolygonVertices = 1000;
+
 template <class Source>
 void read_polygon(Source& src, const PlyProperty& p, std::uint64_t vertex_count, std::vector<std::int32_t>& polygon) {
   const std::int64_t count = src.integer(p.count_type);
   if (count < 0) src.fail("negative list length " + std::to_string(count));
+  // Fan triangulation is for the small convex polygons scanner software writes; the cap also bounds memory, which
+  // would otherwise grow 12 bytes a triangle for each byte of a 1-byte index list.
+  if (count > kMaxPolygonVertices) {
+    src.fail("a polygon of " + std::to_string(count) + " vertices (conform reads polygons of up to " +
+             std::to_string(kMaxPolygonVertices) + ")");
+  }
   src.expect_list(static_cast<std::uint64_t>(count), p.type);
   polygon.resize(static_cast<std::size_t>(count));
   for (std::int32_t& v : polygon) {
@@ -335,6 +396,7 @@ Mesh read_body(Source& src, const std::string& path, const PlyHeader& header, Re
   if (short_faces > 0) {
     report.warnings.push_back(path + ": skipped " + std::to_string(short_faces) + " faces with fewer than 3 vertices");
   }
+  src.finish();
   if (!ignored.empty()) report.warnings.push_back(path + ": ignored PLY elements: " + ignored);
   return mesh;
 }

@@ -4,12 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <unordered_set>
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/core/input_file.h"
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
 #include "conform/core/units.h"
@@ -100,8 +101,7 @@ void check_sizes(const Mesh& scan, const Mesh& reference, const std::string& sca
 }
 
 std::vector<PointPair> read_point_pairs(const std::string& path, double mm_per_unit) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the point pairs file");
+  std::istringstream in(read_input_file(path));
   std::vector<PointPair> pairs;
   std::string line;
   std::vector<double> v;

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -15,6 +13,7 @@
 #include "conform/core/atomic_file.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/input_file.h"
 
 namespace conform {
 namespace {
@@ -109,15 +108,10 @@ ProfileFeature feature_from_json(const nlohmann::json& j, const std::string& whe
 }
 
 std::vector<ProfileFeature> read_features_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the features file");
-  std::ostringstream text;
-  text << in.rdbuf();
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::exception& e) {
-    // nlohmann reads 1e400 as a number out of range: a bad file, not an internal error.
+    j = nlohmann::json::parse(read_input_file(path));
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number such as 1e400
     throw Error(path + ": not valid JSON: " + e.what());
   }
   if (!j.is_object() || !j.contains("features") || !j.at("features").is_array()) {

@@ -84,8 +84,8 @@ TEST(Pcd, DoubleAndIntegerCoordinatesAreConverted) {
   EXPECT_EQ(mesh.vertices[0], Eigen::Vector3d(0.1, 0.2, -3));
 }
 
-// PCL 1.13's own reader allocates what the header claims, crashes without FIELDS, reads bad ascii values as 0 and
-// prints; each of these must be a conform::Error naming the file, with nothing printed.
+// Each of these is a conform::Error naming the file (and the line), with nothing printed. (PCL 1.13's own reader,
+// which conform used before, allocated what the header claims, crashed without FIELDS and read bad values as 0.)
 TEST(Pcd, MalformedFilesAreErrorsAndPclStaysQuiet) {
   test::TempDir dir;
   std::string body;
@@ -97,17 +97,17 @@ TEST(Pcd, MalformedFilesAreErrorsAndPclStaysQuiet) {
     std::string bytes;
     std::string expected;
   } cases[] = {
-      {pcd_header("10", "binary") + body.substr(0, 50), "header claims 10 points (120 bytes) but only 50 bytes follow"},
-      {pcd_header("100000000", "binary") + body, "header claims 100000000 points (1200000000 bytes)"},
-      {pcd_header("4000000000", "binary") + body, "more than 4 GB of points"},
-      {pcd_header("2", "ascii") + "1 2 3\n   \n", ":13: expected 3 values, found 0"},
-      {pcd_header("1", "ascii") + "1\v2 3\n", ":12: column 1: '1\v2' is not a number"},
+      {pcd_header("10", "binary") + body.substr(0, 50), "claims 10 points (120 bytes) but 50 bytes follow the DATA line"},
+      {pcd_header("100000000", "binary") + body, "claims 100000000 points (1200000000 bytes)"},
+      {pcd_header("4000000000", "binary") + body, "more than 2147483647 points"},
+      {pcd_header("2", "ascii") + "1 2 3\n   \n", "claims 2 points but the file holds 1"},
+      {pcd_header("1", "ascii") + "1\v2 3\n", ":12: field 'x' (TYPE F SIZE 4): '1\v2' is not a number"},
       {"VERSION 0.7\nSIZE 4 4 4\nFIELDS x y z\n", ":2: SIZE must come once, after FIELDS"},
       {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nVIEWPOINT 0 0 0 1 0 0\n", ":4: VIEWPOINT must have 7 values"},
-      {pcd_header("100", "ascii") + "1 2 3\n4 5 6\n", "header claims 100 points (at least 6 bytes each)"},
+      {pcd_header("100", "ascii") + "1 2 3\n4 5 6\n", "claims 100 points (at least 6 bytes each)"},
       {pcd_header("4", "ascii") + "1.000 2.000 3.000\n4.000 5.000 6.000\n",
-       "header claims 4 points but the file holds 2"},
-      {pcd_header("2", "ascii") + "1 2 3\n4 abc 6\n", ":13: column 2: 'abc' is not a number"},
+       "claims 4 points but the file holds 2"},
+      {pcd_header("2", "ascii") + "1 2 3\n4 abc 6\n", ":13: field 'y' (TYPE F SIZE 4): 'abc' is not a number"},
       {pcd_header("2", "ascii") + "1 2 3\n4 5\n", ":13: expected 3 values, found 2"},
       {pcd_header("1", "ascii") + "1 2 3\n4 5 6\n", ":13: more points than the header's 1"},
       {"VERSION 0.7\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n", ":5: the PCD header has no FIELDS"},

@@ -3,7 +3,7 @@
 //   .ply  ascii and binary (little/big endian), clouds and meshes, vertex normals (nx, ny, nz)
 //   .stl  ascii and binary, meshes (vertices welded where bit-identical)
 //   .obj  meshes (v, vn, f; polygons fan-triangulated)
-//   .pcd  clouds (PCL's reader and writer), normals as normal_x/y/z
+//   .pcd  clouds (ascii, binary, binary_compressed; conform's own reader and writer), normals as normal_x/y/z
 //   .xyz .txt .asc .csv  point lists: whitespace- or comma-separated, optional header line naming x y z nx ny nz
 // Every reader checks counts against the file's size before allocating and reports errors as conform::Error
 // naming the file and the line, element or byte where the problem is. Writers are byte-deterministic (the same
