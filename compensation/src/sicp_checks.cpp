@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
 
 #include "conform/compensation/sicp_blend.h"
 #include "conform/core/csv.h"
@@ -89,31 +88,6 @@ void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c)
 }
 
 }  // namespace
-
-double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours,
-                           std::size_t samples) {
-  std::vector<double> rms;
-  std::vector<int> indices;
-  std::vector<float> sq;
-  const std::size_t stride = std::max<std::size_t>(1, scan.size() / std::max<std::size_t>(samples, 1));
-  for (std::size_t i = 0; i < scan.size(); i += stride) {
-    tree.knn(scan[i].cast<float>(), neighbours, indices, sq);
-    if (indices.size() < 4) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (int j : indices) mean += scan[static_cast<std::size_t>(j)];
-    mean /= static_cast<double>(indices.size());
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (int j : indices) {
-      const Eigen::Vector3d d = scan[static_cast<std::size_t>(j)] - mean;
-      covariance += d * d.transpose();
-    }
-    const double k = static_cast<double>(indices.size());
-    // The smallest eigenvalue is the sum of squared plane residuals.
-    const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()(0);
-    rms.push_back(std::sqrt(std::max(smallest, 0.0) / (k - 3.0)));
-  }
-  return median(rms);
-}
 
 bool SicpCheckOptions::IsValid(std::string* error) const {
   const char* why = nullptr;

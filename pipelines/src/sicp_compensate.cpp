@@ -4,8 +4,15 @@
 #include "conform/core/nearest_neighbors.h"
 #include "conform/pipelines/sicp.h"
 #include "conform/registration/downsample.h"
+#include "conform/registration/surface_noise.h"
 
 namespace conform {
+namespace {
+
+// The scan's noise for the path checks: plane fits over 20 neighbours (a few mm on a 1 mm voxel scan) at 400 points.
+const SurfaceNoiseOptions kScanNoise{20, 400};
+
+}  // namespace
 
 const char* to_string(SicpModel model) {
   switch (model) {
@@ -65,7 +72,8 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
   smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
   r.check =
-      check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks, estimate_scan_noise(thin, tree));
+      check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks,
+                      estimate_surface_noise(thin, tree, kScanNoise));
   r.trusted = r.check.trusted;
   return r;
 }

@@ -28,6 +28,15 @@ double estimate_surface_noise(const std::vector<Eigen::Vector3d>& points, const 
   const auto k = static_cast<std::size_t>(options.neighbours);
   if (points.size() < k) return 0.0;
   const KdTree tree(points);  // throws for a non-finite point
+  return estimate_surface_noise(points, tree, options);
+}
+
+double estimate_surface_noise(const std::vector<Eigen::Vector3d>& points, const KdTree& tree,
+                              const SurfaceNoiseOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("surface noise options: " + why);
+  const auto k = static_cast<std::size_t>(options.neighbours);
+  if (points.size() < k) return 0.0;
   const std::size_t count = std::min(options.samples, points.size());
   std::vector<double> sigmas(count);
   const double correction = static_cast<double>(k) / static_cast<double>(k - 3);

@@ -1,7 +1,7 @@
 #pragma once
 // Can a Subdivision-ICP path be trusted? A robot cuts along it, so a plausible wrong path is the worst outcome. The
 // checks measure what the registration itself shows (beyond the paper, which reports no such figures):
-//   - noise: measured on the scan alone (plane fits over a few mm, estimate_scan_noise), so that a registration that
+//   - noise: measured on the scan alone (plane fits over a few mm, estimate_surface_noise), so that a registration that
 //     fits every segment badly cannot raise its own bar;
 //   - blind segments: fewer edge (neighbourhood) scan points than min_edge_points: where the edge is, nothing measured
 //     it, and the segment's pose is its neighbours' guess;
@@ -57,17 +57,10 @@ struct SicpCheck {
   std::vector<std::string> warnings;
 };
 
-// The scan's noise, measured on the scan alone (not on the fit, which a wrong registration inflates): the median,
-// over up to `samples` scan points taken evenly, of the residual RMS of the plane fitted to each one's `neighbours`
-// nearest scan points, scaled by sqrt(k / (k - 3)) for the fit's three degrees of freedom (k points). The median
-// leaves out the planes that straddle an edge. 0 for fewer than 4 points. tree indexes scan.
-double estimate_scan_noise(const std::vector<Eigen::Vector3d>& scan, const KdTree& tree, int neighbours = 20,
-                           std::size_t samples = 400);
-
 // registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
 // their distance from the contour only). nominal, compensated: same rows. Throws conform::Error for invalid options
 // or trajectories of different lengths.
-// scan_noise_mm: estimate_scan_noise of the scan the registration used (0: the median segment RMS stands in).
+// scan_noise_mm: estimate_surface_noise (registration/surface_noise.h) of the scan the registration used (0: the median segment RMS stands in).
 SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& registration, const Trajectory& nominal,
                           const Trajectory& compensated, const SicpCheckOptions& options, double scan_noise_mm = 0.0);
 

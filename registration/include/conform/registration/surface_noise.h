@@ -11,6 +11,8 @@
 
 namespace conform {
 
+class KdTree;
+
 struct SurfaceNoiseOptions {
   int neighbours = 16;         // k, the plane fit's support (>= 5)
   std::size_t samples = 2000;  // an even stride of this many points is examined (all when fewer)
@@ -24,5 +26,8 @@ struct SurfaceNoiseOptions {
 // median ignores edges and corners. 0 for fewer than k points. Throws conform::Error for invalid options or a
 // non-finite point.
 double estimate_surface_noise(const std::vector<Eigen::Vector3d>& points, const SurfaceNoiseOptions& options = {});
+// The same over a kd-tree the caller already holds; `tree` indexes `points`.
+double estimate_surface_noise(const std::vector<Eigen::Vector3d>& points, const KdTree& tree,
+                              const SurfaceNoiseOptions& options = {});
 
 }  // namespace conform
