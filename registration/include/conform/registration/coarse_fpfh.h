@@ -31,11 +31,22 @@ struct FpfhOptions {
   int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
   double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
   std::uint64_t seed = 1;
+  // RANSAC runs over the same descriptors, seeded seed, seed + 1, ...: each run's answer is a hypothesis of its own
+  // (hypotheses), so that one unlucky run (a mirror pose on a near-symmetric part) meets competition.
+  int runs = 4;
 
   bool IsValid(std::string* error) const;
 };
 
+struct FpfhHypothesis {
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+  bool found = false;
+  double inlier_fraction = 0.0;
+  std::uint64_t seed = 0;
+};
+
 struct FpfhResult {
+  std::vector<FpfhHypothesis> hypotheses;  // one per run, in seed order; the fields below are the best found one's
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
   bool found = false;            // a hypothesis reached min_inlier_fraction
   double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance
