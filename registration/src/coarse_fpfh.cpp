@@ -5,6 +5,7 @@
 #pragma GCC diagnostic ignored "-Warray-bounds"
 #include "conform/registration/coarse_fpfh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -15,6 +16,7 @@
 
 #include "conform/core/cloud.h"
 #include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
 #include "conform/core/normals.h"
 #include "conform/registration/downsample.h"
 #pragma GCC diagnostic pop
@@ -80,10 +82,28 @@ Described strided(const Described& all, std::size_t count) {
   return out;
 }
 
-double auto_voxel(const std::vector<Eigen::Vector3d>& reference) {
+// The median distance from a strided sample of the points to their nearest other point.
+double spacing_of(const std::vector<Eigen::Vector3d>& points) {
+  const KdTree tree(points);
+  const std::size_t n = points.size(), samples = std::min<std::size_t>(n, 500);
+  std::vector<double> gaps;
+  std::vector<int> indices;
+  std::vector<float> sq;
+  for (std::size_t k = 0; k < samples; ++k) {
+    tree.knn(points[k * n / samples].cast<float>(), 2, indices, sq);
+    if (sq.size() == 2) gaps.push_back(std::sqrt(static_cast<double>(sq[1])));
+  }
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
+// From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
+// holds a point and the feature radius (5 voxels) holds enough neighbours for a histogram on a sparse scan.
+double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : reference) box.extend(p);
-  return box.diagonal().norm() / 30.0;
+  return std::max({box.diagonal().norm() / 30.0, 2.0 * spacing_of(scan), 2.0 * spacing_of(reference)});
 }
 
 // One RANSAC run, seeded; the pose in the local (origin-shifted) frames.
@@ -147,7 +167,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   if (!options.IsValid(&why)) throw Error("FPFH options: " + why);
   if (reference.empty() || scan.empty()) throw Error("FPFH: the scan or the reference has no points");
   FpfhResult result;
-  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(reference);
+  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(scan, reference);
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();

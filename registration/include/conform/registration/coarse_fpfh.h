@@ -19,7 +19,7 @@
 namespace conform {
 
 struct FpfhOptions {
-  double voxel_mm = 0.0;              // downsampling voxel; 0: the reference's bounding-box diagonal / 30
+  double voxel_mm = 0.0;  // downsampling voxel; 0: the reference's bounding-box diagonal / 30, >= 2 point spacings
   double feature_radius = 5.0;        // FPFH support radius, in voxels
   double inlier_distance = 1.5;       // a RANSAC inlier is within this many voxels of the reference
   double min_inlier_fraction = 0.25;  // of the RANSAC scan points, for a hypothesis to count
