@@ -89,9 +89,12 @@ Tally boss_plate_trials(int seeds) {
     const bool right = test::rotation_error_deg(c.T_ref_scan, truth) < 1.0;
     const bool ok = accepted(c, 1.0);
     const StartReport& best = c.ranking.starts[static_cast<std::size_t>(c.ranking.best)];
-    std::printf("  boss plate seed %d: %s, best '%s' share %.3f, %s, %zu starts, inlier distance %.3f mm\n", seed,
-                right ? "right" : "WRONG", best.label.c_str(), best.inlier_share, ok ? "accepted" : "refused",
-                c.ranking.starts.size(), c.inlier_distance_mm);
+    const double runner = c.ranking.runner_up < 0
+                              ? 0.0
+                              : c.ranking.starts[static_cast<std::size_t>(c.ranking.runner_up)].inlier_share;
+    std::printf("  boss plate seed %d: %s, best '%s' share %.3f (runner-up %.3f), %s, %zu starts, within %.3f mm\n",
+                seed, right ? "right" : "WRONG", best.label.c_str(), best.inlier_share, runner,
+                ok ? "accepted" : "refused", c.ranking.starts.size(), c.inlier_distance_mm);
     tally.right += right && ok;
     tally.refused += !ok;
     tally.wrong_accepted += !right && ok;
