@@ -82,28 +82,13 @@ Described strided(const Described& all, std::size_t count) {
   return out;
 }
 
-// The median distance from a strided sample of the points to their nearest other point.
-double spacing_of(const std::vector<Eigen::Vector3d>& points) {
-  const KdTree tree(points);
-  const std::size_t n = points.size(), samples = std::min<std::size_t>(n, 500);
-  std::vector<double> gaps;
-  std::vector<int> indices;
-  std::vector<float> sq;
-  for (std::size_t k = 0; k < samples; ++k) {
-    tree.knn(points[k * n / samples].cast<float>(), 2, indices, sq);
-    if (sq.size() == 2) gaps.push_back(std::sqrt(static_cast<double>(sq[1])));
-  }
-  if (gaps.empty()) return 0.0;
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  return gaps[gaps.size() / 2];
-}
-
 // From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
 // holds a point and the feature radius (5 voxels) holds enough neighbours for a histogram on a sparse scan.
 double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : reference) box.extend(p);
-  return std::max({box.diagonal().norm() / 30.0, 2.0 * spacing_of(scan), 2.0 * spacing_of(reference)});
+  return std::max({box.diagonal().norm() / 30.0, 2.0 * median_spacing(scan, KdTree(scan)),
+                   2.0 * median_spacing(reference, KdTree(reference))});
 }
 
 // One RANSAC run, seeded; the pose in the local (origin-shifted) frames.

@@ -48,22 +48,6 @@ double inlier_share(const std::vector<Eigen::Vector3d>& points, const Eigen::Iso
   return static_cast<double>(inside) / static_cast<double>(points.size());
 }
 
-// The reference's point spacing: the median distance from a strided sample of its points to their nearest other.
-double spacing_of(const IcpReference& reference) {
-  const std::vector<Eigen::Vector3d>& points = reference.points();
-  const std::size_t n = points.size(), samples = std::min<std::size_t>(n, 500);
-  std::vector<double> gaps;
-  std::vector<int> indices;
-  std::vector<float> sq;
-  for (std::size_t k = 0; k < samples; ++k) {
-    reference.tree().knn(points[k * n / samples].cast<float>(), 2, indices, sq);
-    if (sq.size() == 2) gaps.push_back(std::sqrt(static_cast<double>(sq[1])));
-  }
-  if (gaps.empty()) return 0.0;
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  return gaps[gaps.size() / 2];
-}
-
 // Higher share first, then lower truncated RMS.
 bool better(const StartReport& a, const StartReport& b) {
   if (a.inlier_share != b.inlier_share) return a.inlier_share > b.inlier_share;
@@ -109,7 +93,8 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   const std::vector<Eigen::Vector3d> subset = stride_downsample(scan, options.probe_points);
   const double cap = options.probe.max_correspondence_distance_mm;
   const bool by_share = options.inlier_distance_mm > 0.0;
-  const double reach = by_share ? 3.0 * spacing_of(reference) + options.inlier_distance_mm : 0.0;
+  const double reach =
+      by_share ? 3.0 * median_spacing(reference.points(), reference.tree()) + options.inlier_distance_mm : 0.0;
   MultiStartResult result;
   for (const CoarseStart& start : starts) {
     IcpOptions probe = options.probe;

@@ -136,24 +136,44 @@ Tally partial_box_trials(int seeds) {
   return tally;
 }
 
-TEST(CoarseHypotheses, BossPlateIsRightOrRefused) {
-  const Tally t = boss_plate_trials(2);
+// Every RANSAC run is a hypothesis of its own, seeded seed, seed + 1, ...; the same options give the same poses.
+TEST(CoarseHypotheses, FpfhRunsAreSeededHypotheses) {
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  FpfhOptions options;
+  options.runs = 3;
+  options.seed = 7;
+  const FpfhResult a = fpfh_ransac(part.scan, part.reference.vertices, options);
+  const FpfhResult b = fpfh_ransac(part.scan, part.reference.vertices, options);
+  ASSERT_EQ(a.hypotheses.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.hypotheses[k].seed, 7u + k);
+    EXPECT_TRUE(a.hypotheses[k].T_ref_scan.isApprox(b.hypotheses[k].T_ref_scan, 0.0));
+    EXPECT_LE(a.hypotheses[k].inlier_fraction, a.inlier_fraction);  // the result is the best found one
+  }
+  EXPECT_TRUE(a.found);
+  EXPECT_LT(test::rotation_error_deg(a.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);  // scan and part coincide
+}
+
+// "Fpfh" in the names: sanitizer runs can leave PCL's feature objects out with --gtest_filter=-*Fpfh* (see
+// align_pipeline_test.cpp).
+TEST(CoarseHypotheses, FpfhBossPlateIsRightOrRefused) {
+  const Tally t = boss_plate_trials(1);
   EXPECT_EQ(t.wrong_accepted, 0);
 }
 
-TEST(CoarseHypotheses, PartialBoxIsRight) {
-  const Tally t = partial_box_trials(2);
+TEST(CoarseHypotheses, FpfhPartialBoxIsRight) {
+  const Tally t = partial_box_trials(1);
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_EQ(t.right, 2);
+  EXPECT_EQ(t.right, 1);
 }
 
-TEST(CoarseHypothesesMatrix, BossPlateTenSeeds) {
+TEST(CoarseHypothesesMatrix, FpfhBossPlateTenSeeds) {
   const Tally t = boss_plate_trials(10);
   std::printf("  boss plate: %d right, %d refused, %d wrong and accepted\n", t.right, t.refused, t.wrong_accepted);
   EXPECT_EQ(t.wrong_accepted, 0);
 }
 
-TEST(CoarseHypothesesMatrix, PartialBoxTenSeeds) {
+TEST(CoarseHypothesesMatrix, FpfhPartialBoxTenSeeds) {
   const Tally t = partial_box_trials(10);
   std::printf("  partial box: %d right, %d refused, %d wrong and accepted\n", t.right, t.refused, t.wrong_accepted);
   EXPECT_EQ(t.wrong_accepted, 0);
