@@ -207,7 +207,16 @@ class AlignCommand : public Command {
     const IcpResult& icp = r.icp;
     nlohmann::json starts = nlohmann::json::array();
     for (const StartReport& s : r.coarse.ranking.starts) {
-      starts.push_back({{"label", s.label}, {"score_mm", s.score_mm}, {"inlier_fraction", s.inlier_fraction}});
+      nlohmann::json pose = nlohmann::json::array();
+      for (int row = 0; row < 4; ++row) {
+        pose.push_back(std::vector<double>{s.T_probe(row, 0), s.T_probe(row, 1), s.T_probe(row, 2), s.T_probe(row, 3)});
+      }
+      starts.push_back({{"label", s.label},
+                        {"score_mm", s.score_mm},
+                        {"inlier_fraction", s.inlier_fraction},
+                        {"inlier_share", s.inlier_share},
+                        {"rms_mm", s.rms_mm},
+                        {"T_ref_scan", pose}});
     }
     const DegeneracyReport& c = icp.degeneracy;
     nlohmann::json covariance = nlohmann::json::array();
@@ -240,6 +249,7 @@ class AlignCommand : public Command {
                         {"start", r.start},
                         {"starts", starts},
                         {"ambiguous", r.coarse.ranking.ambiguous},
+                        {"coarse_inlier_distance_mm", r.coarse.inlier_distance_mm},
                         {"max_distance_mm", r.max_distance_mm},
                         {"scan_points", r.scan_points},
                         {"scan_points_used", r.scan_points_used},

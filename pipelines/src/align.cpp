@@ -71,10 +71,12 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
-    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label + "' fits almost as well (" +
-                              std::to_string(other.score_mm) + " mm against " + std::to_string(best.score_mm) +
-                              " mm) at another pose; the part may be symmetric. Check the result, or give point "
-                              "pairs (--init pairs:FILE)");
+    char shares[160];
+    std::snprintf(shares, sizeof shares,
+                  "inlier share %.3f against %.3f within %.3g mm; truncated RMS %.3g against %.3g mm", other.inlier_share, best.inlier_share, result.coarse.inlier_distance_mm, other.score_mm,
+                  best.score_mm);
+    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label + "' fits almost as well as '" +
+                              best.label + "' (" + shares + ") at another pose; the part may be symmetric");
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "conform/core/geometry.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/surface_noise.h"
 
@@ -18,6 +19,10 @@ constexpr double kConsistentRatio = 2.0;
 constexpr double kLowOverlapShare = 0.5;
 // The noise estimate's sample: enough for a stable median, cheap next to ICP.
 constexpr std::size_t kNoiseSamples = 2000;
+// The best coarse start's inlier share below this share of --overlap: the coarse pose is not on the reference.
+constexpr double kLowCoarseShare = 0.5;
+const char* const kWhatToDo =
+    "; give point pairs (markers, --init pairs:FILE) or a scan that covers more of the part's distinctive shape";
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char buffer[256];
@@ -46,8 +51,24 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mes
   v.overlap = icp.inlier_fraction;
   std::vector<std::string> no, check;
   if (!icp.converged) no.push_back(std::string("ICP did not converge (") + to_string(icp.termination) + ")");
-  if (result.coarse.ranking.ambiguous) {
-    no.push_back("another coarse start fits almost as well at another pose (see starts)");
+  const MultiStartResult& ranking = result.coarse.ranking;
+  if (ranking.ambiguous) {
+    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
+    const double apart = rotation_angle(other.T_probe * best.T_probe.inverse()) * 180.0 / M_PI;
+    no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label +
+                 format("' at a pose %.1f deg away (inlier share %.3f against %.3f, see starts)", apart,
+                        other.inlier_share, best.inlier_share) +
+                 kWhatToDo);
+  }
+  if (ranking.best >= 0 && result.coarse.inlier_distance_mm > 0.0) {
+    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    if (best.inlier_share < kLowCoarseShare * options.overlap) {
+      no.push_back(format("the best coarse start has only %.0f%% of the scan within %.3g mm of the reference "
+                          "(expected overlap %.0f%%)",
+                          100.0 * best.inlier_share, result.coarse.inlier_distance_mm, 100.0 * options.overlap) +
+                   kWhatToDo + " (or set --overlap)");
+    }
   }
   if (options.max_noise_ratio > 0.0 && v.noise_ratio > options.max_noise_ratio) {
     no.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,

@@ -1,9 +1,11 @@
 #include "conform/registration/coarse.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/registration/surface_noise.h"
 
 namespace conform {
 
@@ -23,8 +25,9 @@ bool CoarseOptions::IsValid(std::string* error) const {
   std::string why;
   if (!(pca_ambiguity >= 0.0 && pca_ambiguity < 1.0)) {
     why = "pca_ambiguity must be in [0, 1)";
-  } else if (!(fpfh_trusted_fraction >= 0.0 && fpfh_trusted_fraction <= 1.0)) {
-    why = "fpfh_trusted_fraction must be in [0, 1]";
+  } else if (!(inlier_noise_factor >= 0.0) || !std::isfinite(inlier_noise_factor) || !(inlier_floor_share >= 0.0) ||
+             !std::isfinite(inlier_floor_share)) {
+    why = "inlier_noise_factor and inlier_floor_share must be finite and >= 0";
   } else if (method == CoarseMethod::kFpfh && !fpfh.IsValid(&why)) {
     why = "fpfh: " + why;
   } else if (method != CoarseMethod::kNone && !multi_start.IsValid(&why)) {
@@ -45,20 +48,29 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
     return result;
   }
   std::vector<CoarseStart> starts;
-  bool add_pca = options.method == CoarseMethod::kPca;
   if (options.method == CoarseMethod::kFpfh) {
     report(options.progress, "coarse: fpfh", 0.0);
     result.fpfh_used = true;
     result.fpfh = fpfh_ransac(scan, reference.points(), options.fpfh);
     report(options.progress, "coarse: fpfh", 1.0);
-    if (result.fpfh.found) starts.push_back({"fpfh", result.fpfh.T_ref_scan});
-    add_pca = !result.fpfh.found || result.fpfh.inlier_fraction < options.fpfh_trusted_fraction;
+    for (const FpfhHypothesis& h : result.fpfh.hypotheses) {
+      if (h.found) starts.push_back({"fpfh seed " + std::to_string(h.seed), h.T_ref_scan});
+    }
   }
-  if (add_pca) {
-    for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
+  for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
+  MultiStartOptions multi_start = options.multi_start;
+  if (multi_start.inlier_distance_mm == 0.0 && options.inlier_noise_factor > 0.0) {
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : scan) box.extend(p);
+    SurfaceNoiseOptions noise;
+    noise.samples = 2000;
+    result.scan_noise_mm = estimate_surface_noise(scan, noise);
+    multi_start.inlier_distance_mm = std::max(options.inlier_noise_factor * result.scan_noise_mm,
+                                              options.inlier_floor_share * box.diagonal().norm());
   }
+  result.inlier_distance_mm = multi_start.inlier_distance_mm;
   report(options.progress, "coarse: starts", 0.0);
-  result.ranking = rank_starts(scan, reference, starts, options.multi_start);
+  result.ranking = rank_starts(scan, reference, starts, multi_start);
   report(options.progress, "coarse: starts", 1.0);
   const StartReport& best = result.ranking.starts[static_cast<std::size_t>(result.ranking.best)];
   result.T_ref_scan = best.T_probe;

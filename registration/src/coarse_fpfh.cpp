@@ -5,6 +5,7 @@
 #pragma GCC diagnostic ignored "-Warray-bounds"
 #include "conform/registration/coarse_fpfh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -15,6 +16,7 @@
 
 #include "conform/core/cloud.h"
 #include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
 #include "conform/core/normals.h"
 #include "conform/registration/downsample.h"
 #pragma GCC diagnostic pop
@@ -80,10 +82,40 @@ Described strided(const Described& all, std::size_t count) {
   return out;
 }
 
-double auto_voxel(const std::vector<Eigen::Vector3d>& reference) {
+// From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
+// holds a point and the feature radius (5 voxels) holds enough neighbours for a histogram on a sparse scan.
+double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : reference) box.extend(p);
-  return box.diagonal().norm() / 30.0;
+  return std::max({box.diagonal().norm() / 30.0, 2.0 * median_spacing(scan, KdTree(scan)),
+                   2.0 * median_spacing(reference, KdTree(reference))});
+}
+
+// One RANSAC run, seeded; the pose in the local (origin-shifted) frames.
+FpfhHypothesis ransac_once(const Described& sample, const Described& r, const FpfhOptions& options,
+                           std::uint64_t seed, double v) {
+  pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, pcl::FPFHSignature33> ransac;
+  ransac.setInputSource(sample.points);
+  ransac.setSourceFeatures(sample.features);
+  ransac.setInputTarget(r.points);
+  ransac.setTargetFeatures(r.features);
+  ransac.setMaximumIterations(options.max_iterations);
+  ransac.setNumberOfSamples(3);
+  ransac.setCorrespondenceRandomness(options.correspondence_randomness);
+  ransac.setSimilarityThreshold(static_cast<float>(options.similarity));
+  ransac.setMaxCorrespondenceDistance(options.inlier_distance * v);
+  ransac.setInlierFraction(static_cast<float>(options.min_inlier_fraction));
+  std::srand(static_cast<unsigned>(seed ^ (seed >> 32)));
+  Points aligned;
+  ransac.align(aligned);
+  FpfhHypothesis h;
+  h.seed = seed;
+  h.found = ransac.hasConverged();
+  h.inlier_fraction = static_cast<double>(ransac.getInliers().size()) / static_cast<double>(sample.points->size());
+  const Eigen::Matrix4d local = ransac.getFinalTransformation().cast<double>();
+  h.T_ref_scan.linear() = Eigen::Quaterniond(local.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
+  h.T_ref_scan.translation() = local.topRightCorner<3, 1>();
+  return h;
 }
 
 }  // namespace
@@ -100,6 +132,8 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "min_inlier_fraction must be in [0, 1]";
   } else if (ransac_points < 3) {
     why = "ransac_points must be >= 3";
+  } else if (runs < 1) {
+    why = "runs must be >= 1";
   } else if (max_iterations < 1) {
     why = "max_iterations must be >= 1";
   } else if (correspondence_randomness < 1) {
@@ -118,7 +152,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   if (!options.IsValid(&why)) throw Error("FPFH options: " + why);
   if (reference.empty() || scan.empty()) throw Error("FPFH: the scan or the reference has no points");
   FpfhResult result;
-  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(reference);
+  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(scan, reference);
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
@@ -128,29 +162,19 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   result.reference_points = r.points->size();
 
   const Described sample = strided(s, options.ransac_points);
-  pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, pcl::FPFHSignature33> ransac;
-  ransac.setInputSource(sample.points);
-  ransac.setSourceFeatures(sample.features);
-  ransac.setInputTarget(r.points);
-  ransac.setTargetFeatures(r.features);
-  ransac.setMaximumIterations(options.max_iterations);
-  ransac.setNumberOfSamples(3);
-  ransac.setCorrespondenceRandomness(options.correspondence_randomness);
-  ransac.setSimilarityThreshold(static_cast<float>(options.similarity));
-  ransac.setMaxCorrespondenceDistance(options.inlier_distance * v);
-  ransac.setInlierFraction(static_cast<float>(options.min_inlier_fraction));
-  std::srand(static_cast<unsigned>(options.seed ^ (options.seed >> 32)));
-  Points aligned;
-  ransac.align(aligned);
-  result.found = ransac.hasConverged();
-  result.inlier_fraction = static_cast<double>(ransac.getInliers().size()) / static_cast<double>(sample.points->size());
-  // T_ref_scan = shift(ref_origin) * T_local * shift(-scan_origin).
-  const Eigen::Matrix4d local = ransac.getFinalTransformation().cast<double>();
-  const Eigen::Matrix3d rotation = Eigen::Quaterniond(local.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = rotation;
-  T.translation() = ref_origin + local.topRightCorner<3, 1>() - rotation * scan_origin;
-  result.T_ref_scan = T;
+  for (int run = 0; run < options.runs; ++run) {
+    const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(run);
+    FpfhHypothesis h = ransac_once(sample, r, options, seed, v);
+    // T_ref_scan = shift(ref_origin) * T_local * shift(-scan_origin).
+    h.T_ref_scan = Eigen::Translation3d(ref_origin) * h.T_ref_scan * Eigen::Translation3d(-scan_origin);
+    const bool best = h.found && (!result.found || h.inlier_fraction > result.inlier_fraction);
+    if (best || (run == 0 && !h.found)) {
+      result.found = h.found;
+      result.inlier_fraction = h.inlier_fraction;
+      result.T_ref_scan = h.T_ref_scan;
+    }
+    result.hypotheses.push_back(h);
+  }
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
 
 namespace conform {
 
@@ -46,6 +47,20 @@ std::vector<Eigen::Vector3d> stride_downsample(const std::vector<Eigen::Vector3d
   out.reserve(count);
   for (std::size_t k = 0; k < count; ++k) out.push_back(points[k * points.size() / count]);
   return out;
+}
+
+double median_spacing(const std::vector<Eigen::Vector3d>& points, const KdTree& tree, std::size_t samples) {
+  const std::size_t n = points.size(), count = std::min(n, samples);
+  std::vector<double> gaps;
+  std::vector<int> indices;
+  std::vector<float> sq;
+  for (std::size_t k = 0; k < count; ++k) {
+    tree.knn(points[k * n / count].cast<float>(), 2, indices, sq);
+    if (sq.size() == 2) gaps.push_back(std::sqrt(static_cast<double>(sq[1])));
+  }
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  return gaps[gaps.size() / 2];
 }
 
 }  // namespace conform

@@ -29,6 +29,31 @@ double truncated_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Is
   return std::sqrt(sum / static_cast<double>(points.size()));
 }
 
+// Share of the points within `tolerance` of the reference plane at their nearest reference point, that point no
+// farther than `reach` (a mesh's vertices are sparse: the plane distance is the one that measures the fit).
+double inlier_share(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
+                    const IcpReference& reference, double tolerance, double reach) {
+  std::size_t inside = 0;
+  const bool has_normals = reference.normals().size() == reference.points().size();
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d q = T * p;
+    const Eigen::Vector3f qf = q.cast<float>();
+    if (!qf.allFinite()) continue;
+    const int j = reference.tree().nearest(qf);
+    if (j < 0) continue;
+    const Eigen::Vector3d d = q - reference.points()[static_cast<std::size_t>(j)];
+    const double along = has_normals ? std::abs(d.dot(reference.normals()[static_cast<std::size_t>(j)])) : d.norm();
+    inside += along <= tolerance && d.norm() <= reach;
+  }
+  return static_cast<double>(inside) / static_cast<double>(points.size());
+}
+
+// Higher share first, then lower truncated RMS.
+bool better(const StartReport& a, const StartReport& b) {
+  if (a.inlier_share != b.inlier_share) return a.inlier_share > b.inlier_share;
+  return a.score_mm < b.score_mm;
+}
+
 double size_of(const std::vector<Eigen::Vector3d>& points) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : points) box.extend(p);
@@ -47,6 +72,13 @@ bool MultiStartOptions::IsValid(std::string* error) const {
     why = "probe_points must be at least probe.min_correspondences";
   } else if (!(ambiguity >= 0.0) || !std::isfinite(ambiguity)) {
     why = "ambiguity must be finite and >= 0";
+  } else if (!(inlier_distance_mm >= 0.0) || !std::isfinite(inlier_distance_mm)) {
+    why = "inlier_distance_mm must be finite and >= 0 (0: score by truncated RMS)";
+  } else if (!(share_margin >= 0.0 && share_margin < 1.0)) {
+    why = "share_margin must be in [0, 1)";
+  } else if (!(distinct_deg > 0.0) || !std::isfinite(distinct_deg) || !(distinct_mm >= 0.0) ||
+             !std::isfinite(distinct_mm)) {
+    why = "distinct_deg must be finite and > 0, distinct_mm finite and >= 0";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -60,6 +92,9 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   if (starts.empty()) throw Error("multi-start: no starts given");
   const std::vector<Eigen::Vector3d> subset = stride_downsample(scan, options.probe_points);
   const double cap = options.probe.max_correspondence_distance_mm;
+  const bool by_share = options.inlier_distance_mm > 0.0;
+  const double reach =
+      by_share ? 3.0 * median_spacing(reference.points(), reference.tree()) + options.inlier_distance_mm : 0.0;
   MultiStartResult result;
   for (const CoarseStart& start : starts) {
     IcpOptions probe = options.probe;
@@ -71,8 +106,10 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     report.T_probe = r.T_ref_scan;
     report.score_mm = truncated_rms(subset, r.T_ref_scan, reference, cap);
     report.inlier_fraction = r.inlier_fraction;
+    report.rms_mm = r.rms_mm;
+    if (by_share) report.inlier_share = inlier_share(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach);
     result.starts.push_back(report);
-    if (result.best < 0 || report.score_mm < result.starts[static_cast<std::size_t>(result.best)].score_mm) {
+    if (result.best < 0 || better(report, result.starts[static_cast<std::size_t>(result.best)])) {
       result.best = static_cast<int>(result.starts.size()) - 1;
     }
   }
@@ -80,15 +117,22 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   const Eigen::Vector3d centre =
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
       static_cast<double>(subset.size());
-  const double far_mm = 0.01 * size_of(subset);
+  const double size_mm = size_of(subset);
+  const double far_mm = !by_share                  ? 0.01 * size_mm
+                        : options.distinct_mm > 0.0 ? options.distinct_mm
+                                                    : std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
+  const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;
   for (std::size_t j = 0; j < result.starts.size(); ++j) {
     const StartReport& other = result.starts[j];
-    if (static_cast<int>(j) == result.best || other.score_mm > (1.0 + options.ambiguity) * best.score_mm) continue;
+    if (static_cast<int>(j) == result.best) continue;
+    const bool close = by_share ? other.inlier_share >= (1.0 - options.share_margin) * best.inlier_share
+                                : other.score_mm <= (1.0 + options.ambiguity) * best.score_mm;
+    if (!close) continue;
     const Eigen::Isometry3d between = other.T_probe * best.T_probe.inverse();
-    const bool elsewhere = rotation_angle(between) > 2.0 * M_PI / 180.0 ||
-                           (other.T_probe * centre - best.T_probe * centre).norm() > far_mm;
+    const bool elsewhere =
+        rotation_angle(between) > far_rad || (other.T_probe * centre - best.T_probe * centre).norm() > far_mm;
     if (elsewhere &&
-        (result.runner_up < 0 || other.score_mm < result.starts[static_cast<std::size_t>(result.runner_up)].score_mm)) {
+        (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)]))) {
       result.ambiguous = true;
       result.runner_up = static_cast<int>(j);
     }

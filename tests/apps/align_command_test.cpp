@@ -180,6 +180,33 @@ TEST(AlignCommand, ATubePatchIsReportedDegenerate) {
   EXPECT_NE(r.err.find("does not constrain every degree of freedom"), std::string::npos) << r.err;
 }
 
+// A tube patch turned end for end is the same surface: --init fpfh finds both poses equally well backed, so the
+// verdict is "no" (exit 1, nothing written) with what to do, and the JSON lists the candidates.
+TEST(AlignCommand, FpfhOnASymmetricPatchRefusesWithTheCandidates) {
+  test::TempDir dir;
+  const std::string tube = dir.file("tube.ply"), reference = dir.file("tube_ref.ply");
+  for (const auto& [out, edge] : {std::pair{tube, "3"}, std::pair{reference, "4"}}) {
+    const auto g = test::run(CONFORM_EXE, {"generate", "tube", "--out", out, "--radius", "150", "--length", "200",
+                                           "--arc-deg", "60", "--edge", edge, "--quiet"});
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+  }
+  const std::string T = dir.file("T.txt");
+  const auto r = align({"--scan", tube, "--reference", reference, "--init", "fpfh", "--json", "--out-transform", T});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("fits almost as well"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--init pairs:FILE"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["converged"], false);
+  EXPECT_EQ(j["trust"], "no");
+  EXPECT_TRUE(j["ambiguous"].get<bool>());
+  EXPECT_GT(j["coarse_inlier_distance_mm"].get<double>(), 0.0);
+  ASSERT_GE(j["starts"].size(), 2u);
+  for (const auto& s : j["starts"]) {
+    for (const char* key : {"label", "inlier_share", "rms_mm", "score_mm", "T_ref_scan"}) EXPECT_TRUE(s.contains(key));
+  }
+  EXPECT_EQ(dir.listing(), "tube.ply\ntube.truth.json\ntube_ref.ply\ntube_ref.truth.json\n");  // no T.txt
+}
+
 TEST(AlignCommand, NoOverlapExitsOneAndWritesNothing) {
   BlockFiles f;
   write_points(f.scan, stepped_block(3.0, 1.3), Eigen::Isometry3d(Eigen::Translation3d(0, 0, 1000)));

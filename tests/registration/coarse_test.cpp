@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
 #include "conform/registration/coarse_pca.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/multi_start.h"
@@ -76,6 +77,47 @@ TEST(MultiStart, PicksTheRightStartAndFlagsASymmetricPart) {
   ASSERT_GE(r.runner_up, 0);
   EXPECT_NEAR(r.starts[static_cast<std::size_t>(r.runner_up)].score_mm,
               r.starts[static_cast<std::size_t>(r.best)].score_mm, 0.01);
+}
+
+TEST(MultiStart, InlierShareRanksAndFlagsTheMirror) {
+  // The box part: one right pose, all of the scan within 0.2 mm (3x its 0.02 mm noise and some), nothing else close.
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  const IcpReference reference(part.reference);
+  Random random(5);
+  const Eigen::Isometry3d truth = test::random_motion(random, 2.0, 100.0, part.centre);
+  std::vector<Eigen::Vector3d> scan = test::transformed_points(part.scan, truth.inverse());
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 20.0;
+  options.inlier_distance_mm = 0.2;
+  MultiStartResult r = rank_starts(scan, reference, pca_starts(scan, part.reference.vertices), options);
+  ASSERT_GE(r.best, 0);
+  EXPECT_FALSE(r.ambiguous);
+  const StartReport& best = r.starts[static_cast<std::size_t>(r.best)];
+  EXPECT_LT(test::rotation_error_deg(best.T_probe, truth), 0.05);
+  EXPECT_GT(best.inlier_share, 0.95);
+  for (const StartReport& s : r.starts) {
+    if (test::rotation_error_deg(s.T_probe, truth) > 3.0) {
+      EXPECT_LT(s.inlier_share, 0.9 * best.inlier_share);
+    }
+  }
+  // A plain box: the mirror poses reach the same share.
+  const std::vector<Eigen::Vector3d> box = box_surface({120, 80, 40}, 4.0);
+  Mesh box_mesh;
+  box_mesh.vertices = box;
+  const IcpReference box_reference(box_mesh);
+  scan = test::transformed_points(box, truth.inverse());
+  r = rank_starts(scan, box_reference, pca_starts(scan, box), options);
+  EXPECT_TRUE(r.ambiguous);
+  ASSERT_GE(r.runner_up, 0);
+  EXPECT_NEAR(r.starts[static_cast<std::size_t>(r.runner_up)].inlier_share,
+              r.starts[static_cast<std::size_t>(r.best)].inlier_share, 0.01);
+}
+
+TEST(Downsample, MedianSpacingOfAGrid) {
+  const std::vector<Eigen::Vector3d> grid = box_surface({120, 80, 40}, 2.5);
+  EXPECT_NEAR(median_spacing(grid, KdTree(grid)), 2.5, 1e-5);  // float tree: 1e-5 mm
+  EXPECT_EQ(median_spacing({Eigen::Vector3d::Zero()}, KdTree(std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()})),
+            0.0);
 }
 
 TEST(PointPairs, ResidualsPointAtTheBadPair) {

@@ -1,8 +1,8 @@
 #pragma once
 // Coarse alignment, so that a user need not pre-place the scan: the starts of one method (principal axes with
 // their sign ambiguities, FPFH + RANSAC, or just the identity), ranked by a short ICP from each (multi_start.h).
-// FPFH's answer is trusted alone when RANSAC found a hypothesis backed by enough of the scan; otherwise (repetitive or
-// featureless shape, or little overlap) the principal-axes starts join it and the best one wins.
+// With FPFH every RANSAC run's hypothesis is a start and the principal-axes starts always join them (their sign
+// choices are exactly a near-symmetric part's mirror poses): the best start, by inlier share, wins.
 
 #include <string>
 #include <vector>
@@ -25,9 +25,12 @@ struct CoarseOptions {
   CoarseMethod method = CoarseMethod::kPca;
   double pca_ambiguity = 0.1;  // coarse_pca.h
   FpfhOptions fpfh;
-  // Below this RANSAC inlier fraction the FPFH answer is not trusted alone.
-  double fpfh_trusted_fraction = 0.5;
   MultiStartOptions multi_start;  // its probe's max_correspondence_distance_mm must be set (finite)
+  // Starts are scored by inlier share (multi_start.h) within max(inlier_noise_factor x the scan's noise
+  // (surface_noise.h), inlier_floor_share x the scan's bounding-box diagonal), unless multi_start.inlier_distance_mm
+  // is set; inlier_noise_factor 0: by truncated RMS only.
+  double inlier_noise_factor = 3.0;
+  double inlier_floor_share = 1e-3;
   ProgressFn progress;            // stages "coarse: fpfh", "coarse: starts"
 
   bool IsValid(std::string* error) const;
@@ -39,6 +42,8 @@ struct CoarseResult {
   bool fpfh_used = false;
   FpfhResult fpfh;     // when fpfh_used
   std::string winner;  // the winning start's label ("identity" for kNone)
+  double scan_noise_mm = 0.0;       // the scan's own noise, when scoring by share
+  double inlier_distance_mm = 0.0;  // the share's distance as used (0: scored by truncated RMS)
 };
 
 // Throws conform::Error for invalid options or too few points (see pca_starts, fpfh_ransac).

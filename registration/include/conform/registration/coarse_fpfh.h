@@ -19,7 +19,7 @@
 namespace conform {
 
 struct FpfhOptions {
-  double voxel_mm = 0.0;              // downsampling voxel; 0: the reference's bounding-box diagonal / 30
+  double voxel_mm = 0.0;  // downsampling voxel; 0: the reference's bounding-box diagonal / 30, >= 2 point spacings
   double feature_radius = 5.0;        // FPFH support radius, in voxels
   double inlier_distance = 1.5;       // a RANSAC inlier is within this many voxels of the reference
   double min_inlier_fraction = 0.25;  // of the RANSAC scan points, for a hypothesis to count
@@ -31,11 +31,22 @@ struct FpfhOptions {
   int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
   double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
   std::uint64_t seed = 1;
+  // RANSAC runs over the same descriptors, seeded seed, seed + 1, ...: each run's answer is a hypothesis of its own
+  // (hypotheses), so that one unlucky run (a mirror pose on a near-symmetric part) meets competition.
+  int runs = 4;
 
   bool IsValid(std::string* error) const;
 };
 
+struct FpfhHypothesis {
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+  bool found = false;
+  double inlier_fraction = 0.0;
+  std::uint64_t seed = 0;
+};
+
 struct FpfhResult {
+  std::vector<FpfhHypothesis> hypotheses;  // one per run, in seed order; the fields below are the best found one's
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
   bool found = false;            // a hypothesis reached min_inlier_fraction
   double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance

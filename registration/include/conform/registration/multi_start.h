@@ -19,6 +19,15 @@ struct MultiStartOptions {
   // Another start whose score is within this fraction of the best, ending more than 2 degrees or 1% of the scan's
   // size away from the best, makes the result ambiguous.
   double ambiguity = 0.2;
+  // Scoring by inlier share (used when > 0, e.g. 3 times the scan's noise): the share of the probe points within
+  // this distance of the reference plane at their nearest reference point (and within a few point spacings of that
+  // point) ranks the starts, highest first; the truncated RMS breaks ties and ranks when 0.
+  double inlier_distance_mm = 0.0;
+  // With inlier scoring: another start ending elsewhere (more than distinct_deg apart, or its centre more than
+  // distinct_mm away) whose share is at least (1 - share_margin) times the best's makes the result ambiguous.
+  double share_margin = 0.1;
+  double distinct_deg = 3.0;
+  double distinct_mm = 0.0;  // 0: 10 times inlier_distance_mm, at least 1% of the scan's size
 
   MultiStartOptions() { probe.max_iterations = 15; }
   bool IsValid(std::string* error) const;
@@ -30,6 +39,8 @@ struct StartReport {
   Eigen::Isometry3d T_probe = Eigen::Isometry3d::Identity();  // where its short ICP ended
   double score_mm = 0.0;                                      // truncated RMS at T_probe, lower is better
   double inlier_fraction = 0.0;
+  double inlier_share = 0.0;  // of the probe points, within inlier_distance_mm (0 when not scored so)
+  double rms_mm = 0.0;        // the probe ICP's RMS at T_probe
 };
 
 struct MultiStartResult {
