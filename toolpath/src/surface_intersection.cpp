@@ -215,7 +215,8 @@ std::vector<IntersectionPoint> thin(std::vector<IntersectionPoint> points, doubl
   }
   std::vector<IntersectionPoint> kept;
   CellMap hashed;
-  for (const auto& [key, p] : cells) {
+  for (const auto& entry : cells) {
+    const IntersectionPoint& p = entry.second;  // a named reference: lambdas may not capture structured bindings
     bool near = false;
     around(hashed, p.position, cell, [&](std::size_t k) { near = near || (kept[k].position - p.position).norm() < cell; });
     if (near) continue;
