@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
 # Sets conform up on a fresh Debian machine: installs the Debian packages it needs, configures and builds.
-# Usage: scripts/setup.sh [build-dir] [extra cmake args...]   (default build dir: build)
-# Idempotent: run it again after a pull to rebuild.
+# Usage: scripts/setup.sh [--target T] [build-dir] [extra cmake args...]   (default build dir: build)
+# --target T builds only T and what it needs (the README's first command builds only the `conform` program);
+# without it everything is built, tests included. Idempotent: run it again after a pull to rebuild.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+target=()
+if [ "${1:-}" = "--target" ]; then
+  target=(--target "$2")
+  shift 2
+fi
 build_dir=${1:-build}
 shift || true
 
@@ -23,4 +29,4 @@ if ((${#missing[@]})); then
 fi
 
 cmake -S . -B "$build_dir" -G Ninja "$@"
-cmake --build "$build_dir" -j "$(nproc)"
+cmake --build "$build_dir" -j "$(nproc)" "${target[@]}"
