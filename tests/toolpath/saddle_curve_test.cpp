@@ -2,6 +2,7 @@
 // through the joint frames, finite differences of the curve, and normals from finite-difference gradients.
 
 #include "conform/toolpath/saddle_curve.h"
+#include "saddle_test_geometry.h"
 
 #include <cmath>
 #include <functional>
@@ -16,15 +17,10 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+using test::kPi;
 
 SaddleGeometry geometry(double R, double r, double pitch_deg, double offset) {
-  SaddleGeometry g;
-  g.leg_radius_mm = R;
-  g.pipe_radius_mm = r;
-  g.pitch_rad = pitch_deg / 180.0 * kPi;
-  g.offset_mm = offset;
-  return g;
+  return test::saddle_geometry(R, r, pitch_deg, offset);
 }
 
 // Joints from the paper's to steep, offset and nearly-tangent ones.

@@ -11,19 +11,15 @@
 
 #include "conform/toolpath/saddle.h"
 #include "conform/toolpath/saddle_curve.h"
+#include "saddle_test_geometry.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+using test::kPi;
 
 SaddleGeometry geometry(double R, double r, double pitch_deg, double offset) {
-  SaddleGeometry g;
-  g.leg_radius_mm = R;
-  g.pipe_radius_mm = r;
-  g.pitch_rad = pitch_deg / 180.0 * kPi;
-  g.offset_mm = offset;
-  return g;
+  return test::saddle_geometry(R, r, pitch_deg, offset);
 }
 
 // Independent reference for the seam's length: |dP/dphi| in long double (dz/dphi from x_leg^2 = (R - y)(R + y)),
