@@ -12,6 +12,7 @@
 #include "conform/core/error.h"
 #include "conform/core/output_set.h"
 #include "output_paths.h"
+#include "stale_temporaries.h"
 
 namespace conform {
 
@@ -20,8 +21,10 @@ namespace {
 constexpr int kTempAttempts = 100;
 
 // A new temporary beside `target`: O_EXCL|O_NOFOLLOW, so that nothing planted at its name (a file, a symlink) is
-// ever opened; a random name, retried on a collision.
+// ever opened; a random name, retried on a collision; locked until it is renamed or removed (stale_temporaries.h),
+// after the leftovers of killed writers in the same directory are removed.
 int create_temporary(const std::string& shown, const std::string& target, std::string& temp_path) {
+  detail::remove_stale_temporaries(detail::directory_of(target));
   struct stat st {};
   const bool exists = ::stat(target.c_str(), &st) == 0;
   // A new file gets 0666 less the umask, like any other program's output; a replaced one keeps its permission bits.
@@ -31,6 +34,10 @@ int create_temporary(const std::string& shown, const std::string& target, std::s
     const int fd =
         ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, exists ? 0600 : mode);
     if (fd >= 0) {
+      if (!detail::lock_new_temporary(fd, temp_path)) {
+        ::close(fd);  // taken for a leftover by another process's sweep in the instant before the lock: another name
+        continue;
+      }
       if (exists && ::fchmod(fd, mode) != 0) {
         const std::string reason = detail::errno_text();
         ::close(fd);
@@ -85,8 +92,8 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
 }
 
 AtomicFile::~AtomicFile() {
+  if (!done_ && !direct_) ::unlink(temp_path_.c_str());  // while still locked, so no sweep can see it unlocked
   close_fd();
-  if (!done_ && !direct_) ::unlink(temp_path_.c_str());
 }
 
 void AtomicFile::close_fd() {
@@ -111,15 +118,12 @@ void AtomicFile::commit() {
     done_ = true;
     return;
   }
-  // On disk before it gets the target's name: a crash after the rename must not leave an empty or torn file.
+  // On disk before it gets the target's name: a crash after the rename must not leave an empty or torn file. The
+  // descriptor stays open (and the temporary locked) until the rename.
   if (::fsync(fd_) != 0) throw Error(path_ + ": write failed (" + detail::errno_text() + ")");
-  if (::close(fd_) != 0) {
-    fd_ = -1;
-    throw Error(path_ + ": write failed (" + detail::errno_text() + ")");
-  }
-  fd_ = -1;
   if (OutputSet* set = OutputSet::current()) {
-    set->stage(path_, target_, temp_path_);  // the set owns the temporary from here
+    set->stage(path_, target_, temp_path_, fd_);  // the set owns the temporary and its descriptor from here
+    fd_ = -1;
     done_ = true;
     return;
   }
@@ -127,6 +131,9 @@ void AtomicFile::commit() {
     throw Error(path_ + ": cannot write (" + detail::errno_text() + ")");
   }
   done_ = true;
+  const int status = ::close(fd_);
+  fd_ = -1;
+  if (status != 0) throw Error(path_ + ": write failed (" + detail::errno_text() + ")");
   detail::fsync_directory(detail::directory_of(target_));
 }
 

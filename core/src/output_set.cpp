@@ -71,9 +71,7 @@ OutputSet::OutputSet() : outer_(current_set) { current_set = this; }
 
 OutputSet::~OutputSet() {
   current_set = outer_;
-  if (!committed_) {
-    for (const Staged& s : staged_) ::unlink(s.temp.c_str());
-  }
+  release_staged(!committed_);
 }
 
 OutputSet* OutputSet::current() { return current_set; }
@@ -121,7 +119,15 @@ void OutputSet::check_output(const FileId& output) const {
   }
 }
 
-void OutputSet::stage(const std::string& shown, const std::string& target, const std::string& temp) {
+void OutputSet::release_staged(bool remove) {
+  for (const Staged& s : staged_) {
+    if (remove) ::unlink(s.temp.c_str());  // before the close: a temporary is never seen unlocked by a sweep
+    if (s.fd >= 0) ::close(s.fd);
+  }
+  staged_.clear();
+}
+
+void OutputSet::stage(const std::string& shown, const std::string& target, const std::string& temp, int fd) {
   const FileId id = identify(target);
   for (const Staged& s : staged_) {
     if (identify(s.target).normal == id.normal) {
@@ -133,7 +139,7 @@ void OutputSet::stage(const std::string& shown, const std::string& target, const
       throw Error(shown + ": this output is the input " + input.shown + "; write it to another file");
     }
   }
-  staged_.push_back({shown, target, temp});
+  staged_.push_back({shown, target, temp, fd});
 }
 
 void OutputSet::commit() {
@@ -141,7 +147,8 @@ void OutputSet::commit() {
   if (outer_ != nullptr) {
     // Handed on: the enclosing set commits these with its own. A refusal leaves the rest with this set to remove.
     while (!staged_.empty()) {
-      outer_->stage(staged_.front().shown, staged_.front().target, staged_.front().temp);
+      const Staged& s = staged_.front();
+      outer_->stage(s.shown, s.target, s.temp, s.fd);
       staged_.erase(staged_.begin());
     }
   } else {
@@ -172,7 +179,10 @@ void OutputSet::rename_all() {
         ::unlink(staged_[k].target.c_str());
       }
     }
-    for (std::size_t k = i; k < staged_.size(); ++k) ::unlink(staged_[k].temp.c_str());
+    for (std::size_t k = 0; k < staged_.size(); ++k) {
+      if (!moved[k]) ::unlink(staged_[k].temp.c_str());
+      if (staged_[k].fd >= 0) ::close(staged_[k].fd);
+    }
     staged_.clear();
     throw;
   }
@@ -182,7 +192,7 @@ void OutputSet::rename_all() {
     directories.insert(detail::directory_of(staged_[k].target));
   }
   for (const std::string& d : directories) detail::fsync_directory(d);
-  staged_.clear();
+  release_staged(false);
 }
 
 }  // namespace conform

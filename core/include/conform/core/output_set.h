@@ -37,8 +37,10 @@ class OutputSet {
   // The innermost set of this thread, or nullptr.
   static OutputSet* current();
   // AtomicFile::commit(): `temp` (finished, fsync'ed) becomes `target` at commit(). `shown` is the path as the user
-  // gave it, for messages. Throws conform::Error if `target` is already staged or is an input.
-  void stage(const std::string& shown, const std::string& target, const std::string& temp);
+  // gave it, for messages. `fd` is the temporary's open descriptor, which holds its lock (stale_temporaries.h); the
+  // set closes it once the temporary is renamed or removed (when this throws, both stay the caller's). Throws conform::Error if `target`
+  // is already staged or is an input.
+  void stage(const std::string& shown, const std::string& target, const std::string& temp, int fd);
 
   struct FileId {
     std::string shown;
@@ -54,9 +56,12 @@ class OutputSet {
     std::string shown;
     std::string target;
     std::string temp;
+    int fd = -1;  // the temporary's descriptor: its lock
   };
   void check_output(const FileId& output) const;
   void rename_all();
+  // Closes every staged descriptor (releasing the temporaries' locks), after removing the temporaries if `remove`.
+  void release_staged(bool remove);
 
   OutputSet* outer_ = nullptr;
   std::vector<FileId> inputs_;
