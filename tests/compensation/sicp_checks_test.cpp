@@ -135,7 +135,7 @@ TEST(SicpChecks, ShortUnscannedStretchIsBridged) {
 }
 
 // Counted at the rows (count_edge_points): an unscanned stretch of 61 mm is bridged on a straight leg, not across
-// the corner of an L (the corner's place is a guess), nor at an open end.
+// the corner of an L (the corner's place is a guess) or ending next to it, nor at an open end.
 TEST(SicpChecks, UnscannedCornerOrEndIsNotBridged) {
   Line l;
   for (int i = 0; i <= 200; ++i) l.contour.points.emplace_back(i, 0.0, 0.0);
@@ -164,7 +164,8 @@ TEST(SicpChecks, UnscannedCornerOrEndIsNotBridged) {
   EXPECT_GT(straight.unmeasured_rows, 30u);
   EXPECT_EQ(straight.bridged_rows, straight.unmeasured_rows);
   EXPECT_TRUE(straight.trusted) << straight.reason;
-  for (int hole : {200, 0}) {  // the corner; the open start
+  EXPECT_TRUE(check(150).trusted);  // the stretch ends ~19 mm before the corner
+  for (int hole : {200, 165, 0}) {  // the corner; a stretch ending within 10 mm of it; the open start
     const SicpCheck c = check(hole);
     EXPECT_GT(c.unmeasured_rows, 30u) << hole;
     EXPECT_EQ(c.bridged_rows, 0u) << hole;

@@ -5,7 +5,8 @@
 //     fits every segment badly cannot raise its own bar;
 //   - edge support where the path runs: a row is measured when at least min_edge_points scan points lie within
 //     edge_radius_mm of it. A stretch of unmeasured rows is bridged (its rows trusted, at a lower confidence) when it
-//     is at most max_edge_gap_mm long, measured rows close it on both sides and no corner of the contour lies in it:
+//     is at most max_edge_gap_mm long, measured rows close it on both sides and no corner of the contour lies in it (or
+//     within edge_radius_mm of its ends, where the corner is seen from one side only):
 //     along a smooth stretch the blended transforms interpolate the measured ends, but a corner's place sets the path
 //     on both sides of it, and an unmeasured corner is a guess (measured on the nose cone with 20% of the edge
 //     unscanned: 0.02-0.22 mm off the path along bridged smooth stretches, up to 1.07 mm past an unscanned corner);
