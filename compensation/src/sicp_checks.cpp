@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 #include "conform/compensation/sicp_blend.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
@@ -68,7 +67,8 @@ void warn_unbridged(const SicpCheckOptions& o, bool too_long, bool at_corner, bo
     if (why.empty()) why = "no row of the path measured";
     c.warnings.push_back(std::to_string(unbridged) +
                          " rows lie on stretches of the path without scan of the edge that cannot be bridged from "
-                         "measured rows (" + why + "; longest stretch " + format_fixed(c.longest_gap_mm, 1) +
+                         "measured rows (" +
+                         why + "; longest stretch " + format_fixed(c.longest_gap_mm, 1) +
                          " mm): their place is a guess; scan the edge there (or accept guessed rows with a lower "
                          "minimum of edge points)");
   }
@@ -153,10 +153,10 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
 // The warnings of blind, bare and outlier segments and far rows, each saying what to change.
 void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c) {
   if (!c.blind_segments.empty())
-    c.warnings.push_back(
-        std::to_string(c.blind_segments.size()) + " of " + std::to_string(segments) + " segments have fewer than " +
-        std::to_string(o.min_edge_points) + " scan points near the edge (segments " + list(c.blind_segments) +
-        "): their rows are judged by the scan near each row");
+    c.warnings.push_back(std::to_string(c.blind_segments.size()) + " of " + std::to_string(segments) +
+                         " segments have fewer than " + std::to_string(o.min_edge_points) +
+                         " scan points near the edge (segments " + list(c.blind_segments) +
+                         "): their rows are judged by the scan near each row");
   if (!c.bare_segments.empty())
     c.warnings.push_back(std::to_string(c.bare_segments.size()) + " segments have no scan data at all (segments " +
                          list(c.bare_segments) + ")");
@@ -239,16 +239,15 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
     else if (by_segments)
       row.edge_points = r.segments[g.core_at(s[i])].neighbourhood_points;
   }
-  const std::vector<double> support = by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c)
-                                                  : std::vector<double>(c.rows.size(), 1.0);
+  const std::vector<double> support =
+      by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c) : std::vector<double>(c.rows.size(), 1.0);
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
     row.confidence = support[i];
     if (by_segments) {
       const BlendAt b = blend_at(g, s[i]);
-      row.confidence *=
-          (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
+      row.confidence *= (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
@@ -261,7 +260,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   else if (c.untrusted_rows > 0)
     c.reason = std::to_string(c.untrusted_rows) + " of " + std::to_string(c.rows.size()) +
                " rows have a confidence below " + format_fixed(o.min_confidence, 2) + " (" +
-               (c.far_rows > 0                              ? "rows far from the contour"
+               (c.far_rows > 0                       ? "rows far from the contour"
                 : c.unmeasured_rows > c.bridged_rows ? "rows without scan of the edge that cannot be bridged"
                                                      : "segments fitting badly or without data") +
                "; see the warnings)";

@@ -47,9 +47,9 @@ struct SicpRowReport {
   double across_mm = 0.0;
   double axis_mm = 0.0;
   double along_mm = 0.0;
-  double confidence = 0.0;  // [0, 1]: 1 measured (edge scan at the row) by segments with residuals at the noise
-  std::size_t edge_points = 0;       // scan points within edge_radius_mm of the compensated row
-  double gap_mm = 0.0;               // length of the unmeasured stretch the row lies in (0: measured)
+  double confidence = 0.0;      // [0, 1]: 1 measured (edge scan at the row) by segments with residuals at the noise
+  std::size_t edge_points = 0;  // scan points within edge_radius_mm of the compensated row
+  double gap_mm = 0.0;          // length of the unmeasured stretch the row lies in (0: measured)
   double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
 };
 
