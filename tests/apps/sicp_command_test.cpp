@@ -105,6 +105,9 @@ TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_NE(no_surface.err.find("missing.ply"), std::string::npos);
   EXPECT_EQ(sicp({"--model", "spline"}).exit_code, 2);
   EXPECT_EQ(sicp({"--surface", surface, "--overlap", "1.5", "--out-trajectory", dir_.file("o.csv")}).exit_code, 2);
+  const auto gap = sicp({"--surface", surface, "--max-edge-gap", "-1", "--out-trajectory", dir_.file("o.csv")});
+  EXPECT_EQ(gap.exit_code, 2);
+  EXPECT_NE(gap.err.find("largest bridged gap"), std::string::npos) << gap.err;
   // Contour-only S-ICP (a CSV contour without --surface) is refused, naming the option to give.
   const auto contour_only = sicp({"--out-trajectory", dir_.file("o.csv")});
   EXPECT_EQ(contour_only.exit_code, 2);
