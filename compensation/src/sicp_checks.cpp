@@ -192,13 +192,20 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
   return false;
 }
 
-std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory& compensated, double radius_mm) {
+std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory& compensated, double radius_mm,
+                                           std::size_t cap) {
   std::vector<std::size_t> counts;
   std::vector<int> indices;
   std::vector<float> sq;
+  const auto r2 = static_cast<float>(radius_mm * radius_mm);
   for (const Eigen::Vector3d& p : compensated.points) {
-    scan.radius(p.cast<float>(), static_cast<float>(radius_mm), indices, sq);
-    counts.push_back(indices.size());
+    if (cap == 0) {
+      scan.radius(p.cast<float>(), static_cast<float>(radius_mm), indices, sq);
+    } else {  // the cap nearest points only: a few tens instead of the hundreds within the radius
+      scan.knn(p.cast<float>(), static_cast<int>(cap), indices, sq);
+      sq.erase(std::remove_if(sq.begin(), sq.end(), [r2](float d) { return d > r2; }), sq.end());
+    }
+    counts.push_back(cap == 0 ? indices.size() : sq.size());
   }
   return counts;
 }

@@ -159,6 +159,12 @@ TEST(SicpChecks, UnscannedCornerOrEndIsNotBridged) {
     return check_sicp_path(l.contour, l.registration, l.nominal, l.nominal, SicpCheckOptions{}, 0.04, counts);
   };
   const SicpCheck straight = check(100);
+  // Capped counts: the same verdicts from the 20 nearest points.
+  std::vector<Eigen::Vector3d> line_scan;
+  for (int i = 0; i <= 100; ++i) line_scan.emplace_back(i, 0.0, -1.0);
+  const Trajectory at{{Eigen::Vector3d(50, 0, 0), Eigen::Vector3d(5, 0, 0), Eigen::Vector3d(50, 20, 0)}, {}};
+  EXPECT_EQ(count_edge_points(KdTree(line_scan), at, 10.0), (std::vector<std::size_t>{19, 15, 0}));
+  EXPECT_EQ(count_edge_points(KdTree(line_scan), at, 10.0, 12), (std::vector<std::size_t>{12, 12, 0}));
   EXPECT_EQ(straight.rows[100].edge_points, 0u);
   EXPECT_EQ(straight.rows[60].edge_points, 19u);  // scan points 51..69 within 10 mm (1 mm below the rows)
   EXPECT_GT(straight.unmeasured_rows, 30u);

@@ -48,7 +48,7 @@ struct SicpRowReport {
   double axis_mm = 0.0;
   double along_mm = 0.0;
   double confidence = 0.0;      // [0, 1]: 1 measured (edge scan at the row) by segments with residuals at the noise
-  std::size_t edge_points = 0;  // scan points within edge_radius_mm of the compensated row
+  std::size_t edge_points = 0;  // scan points within edge_radius_mm of the compensated row, up to 2 min_edge_points
   double gap_mm = 0.0;          // length of the unmeasured stretch the row lies in (0: measured)
   double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
 };
@@ -71,8 +71,10 @@ struct SicpCheck {
   std::vector<std::string> warnings;
 };
 
-// Scan points within radius_mm of each row of the compensated trajectory (the edge support where the path runs).
-std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory& compensated, double radius_mm);
+// Scan points within radius_mm of each row of the compensated trajectory (the edge support where the path runs),
+// counted up to cap (0: all; the checks need 2 min_edge_points at most).
+std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory& compensated, double radius_mm,
+                                           std::size_t cap = 0);
 
 // registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
 // their distance from the contour only). nominal, compensated: same rows. Throws conform::Error for invalid options
