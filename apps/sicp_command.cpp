@@ -70,7 +70,13 @@ class SicpCommand : public Command {
                  "residuals")
         ->check(CLI::Range(1, 1000));
     c.add_option("--min-edge-points", o.checks.min_edge_points,
-                 "Scan points near the edge a segment needs; fewer: its rows are untrusted");
+                 "Scan points within the edge radius a row needs to be measured (and a segment's neighbourhood not "
+                 "to be blind); 0: every row counts as measured");
+    c.add_option("--edge-radius", o.checks.edge_radius_mm,
+                 "Scan points within this of a compensated row measure the edge there, mm");
+    c.add_option("--max-edge-gap", o.checks.max_edge_gap_mm,
+                 "Longest stretch of path without scan of the edge that is bridged from the measured rows on both "
+                 "sides (no corner in it), mm; longer: its rows are untrusted");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-offset", o.checks.max_offset_mm,
@@ -177,6 +183,9 @@ class SicpCommand : public Command {
                           {"outlier_segments", c.check.outlier_segments},
                           {"untrusted_rows", c.check.untrusted_rows},
                           {"far_rows", c.check.far_rows},
+                          {"unmeasured_rows", c.check.unmeasured_rows},
+                          {"bridged_rows", c.check.bridged_rows},
+                          {"longest_gap_mm", c.check.longest_gap_mm},
                           {"min_confidence", c.check.min_confidence}}},
                         {"trusted", c.trusted},
                         {"out_trajectory", r.out_trajectory_path},
@@ -225,9 +234,10 @@ class SicpCommand : public Command {
     }
     const SicpCheck& k = c.check;
     std::printf(
-        "checks       noise %.4f mm; %zu blind, %zu outlier segments; %zu of %zu rows untrusted (lowest "
-        "confidence %.2f): %s\n",
-        k.noise_mm, k.blind_segments.size(), k.outlier_segments.size(), k.untrusted_rows, k.rows.size(),
+        "checks       noise %.4f mm; %zu blind, %zu outlier segments; %zu rows without edge scan (%zu bridged, "
+        "longest stretch %.1f mm); %zu of %zu rows untrusted (lowest confidence %.2f): %s\n",
+        k.noise_mm, k.blind_segments.size(), k.outlier_segments.size(), k.unmeasured_rows, k.bridged_rows,
+        k.longest_gap_mm, k.untrusted_rows, k.rows.size(),
         k.min_confidence, c.trusted ? "trusted" : k.reason.c_str());
     if (!r.out_trajectory_path.empty()) std::printf("written      %s\n", r.out_trajectory_path.c_str());
     if (!r.out_rows_path.empty()) std::printf("written      %s\n", r.out_rows_path.c_str());

@@ -79,11 +79,14 @@ Trajectory read_trajectory(const std::string& path) {
 }
 
 void write_rows(const std::string& path, const SicpCheck& c) {
-  CsvWriter writer({"row", "across_mm", "axis_mm", "along_mm", "confidence", "contour_distance_mm"}, 6);
+  CsvWriter writer(
+      {"row", "across_mm", "axis_mm", "along_mm", "confidence", "contour_distance_mm", "edge_points", "gap_mm"}, 6);
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     const SicpRowReport& r = c.rows[i];
     writer.cell(static_cast<std::int64_t>(i + 1));
     for (double v : {r.across_mm, r.axis_mm, r.along_mm, r.confidence, r.contour_distance_mm}) writer.cell(v);
+    writer.cell(static_cast<std::int64_t>(r.edge_points));
+    writer.cell(r.gap_mm);
     writer.end_row();
   }
   writer.write(path);

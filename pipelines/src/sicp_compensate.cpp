@@ -71,9 +71,9 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
   if (options.normals.from_scan)
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
   smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
-  r.check =
-      check_sicp_path(contour, r.registration, nominal, r.trajectory, options.checks,
-                      estimate_surface_noise(thin, tree, kScanNoise));
+  r.check = check_sicp_path(
+      contour, r.registration, nominal, r.trajectory, options.checks, estimate_surface_noise(thin, tree, kScanNoise),
+      count_edge_points(tree, r.trajectory, options.checks.edge_radius_mm, 2 * options.checks.min_edge_points));
   r.trusted = r.check.trusted;
   return r;
 }

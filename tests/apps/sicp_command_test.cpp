@@ -54,8 +54,10 @@ TEST_F(SicpCommandTest, JsonAndTrajectory) {
   EXPECT_EQ(test::read_bytes(dir_.file("out.csv")).substr(0, 24), "x_mm,y_mm,z_mm,nx,ny,nz\n");
   // Per row: the correction across the edge, along the tool axis and along the path, and the row's confidence.
   EXPECT_EQ(rows(dir_.file("rows.csv")), rows(dir_.file("p.trajectory.csv")));
-  EXPECT_EQ(test::read_bytes(dir_.file("rows.csv")).substr(0, 64),
-            "row,across_mm,axis_mm,along_mm,confidence,contour_distance_mm\n1,");
+  // ... its scan points near the edge and the unscanned stretch it lies in (none here).
+  const std::string header = "row,across_mm,axis_mm,along_mm,confidence,contour_distance_mm,edge_points,gap_mm\n1,";
+  EXPECT_EQ(test::read_bytes(dir_.file("rows.csv")).substr(0, header.size()), header);
+  EXPECT_EQ(j["checks"]["unmeasured_rows"].get<int>(), 0);
   const auto again = sicp({"--surface", dir_.file("p.nominal.ply"), "--out-trajectory", dir_.file("again.csv")});
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(test::read_bytes(dir_.file("again.csv")), test::read_bytes(dir_.file("out.csv")));
@@ -103,6 +105,9 @@ TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_NE(no_surface.err.find("missing.ply"), std::string::npos);
   EXPECT_EQ(sicp({"--model", "spline"}).exit_code, 2);
   EXPECT_EQ(sicp({"--surface", surface, "--overlap", "1.5", "--out-trajectory", dir_.file("o.csv")}).exit_code, 2);
+  const auto gap = sicp({"--surface", surface, "--max-edge-gap", "-1", "--out-trajectory", dir_.file("o.csv")});
+  EXPECT_EQ(gap.exit_code, 2);
+  EXPECT_NE(gap.err.find("largest bridged gap"), std::string::npos) << gap.err;
   // Contour-only S-ICP (a CSV contour without --surface) is refused, naming the option to give.
   const auto contour_only = sicp({"--out-trajectory", dir_.file("o.csv")});
   EXPECT_EQ(contour_only.exit_code, 2);

@@ -3,8 +3,15 @@
 // checks measure what the registration itself shows (beyond the paper, which reports no such figures):
 //   - noise: measured on the scan alone (plane fits over a few mm, estimate_surface_noise), so that a registration that
 //     fits every segment badly cannot raise its own bar;
-//   - blind segments: fewer edge (neighbourhood) scan points than min_edge_points: where the edge is, nothing measured
-//     it, and the segment's pose is its neighbours' guess;
+//   - edge support where the path runs: a row is measured when at least min_edge_points scan points lie within
+//     edge_radius_mm of it. A stretch of unmeasured rows is bridged (its rows trusted, at a lower confidence) when it
+//     is at most max_edge_gap_mm long, measured rows close it on both sides and no corner of the contour lies in it (or
+//     within edge_radius_mm of its ends, where the corner is seen from one side only):
+//     along a smooth stretch the blended transforms interpolate the measured ends, but a corner's place sets the path
+//     on both sides of it, and an unmeasured corner is a guess (measured on the nose cone with 20% of the edge
+//     unscanned: 0.02-0.22 mm off the path along bridged smooth stretches, up to 1.07 mm past an unscanned corner);
+//   - blind segments: fewer edge (neighbourhood) scan points than min_edge_points (a warning: their rows are judged
+//     by the edge support above); bare segments, without surface (stability) points either, make their rows untrusted;
 //   - outlier segments: a residual RMS above outlier_ratio times the noise (the segment did not find the part);
 //   - rows far from the contour: the segment transforms describe the part near the contour only.
 // Each row gets a confidence in [0, 1] (its segments' blended confidence) and its correction split into the
@@ -29,6 +36,8 @@ struct SicpCheckOptions {
   double outlier_ratio = 4.0;        // a segment's residual RMS above this times the noise is an outlier, > 1
   double max_offset_mm = 10.0;       // rows farther than this from the nominal contour cannot be trusted, > 0
   double min_confidence = 0.5;       // a row below this confidence makes the path untrusted, in [0, 1]
+  double edge_radius_mm = 10.0;      // scan points within this of a compensated row measure the edge there, > 0
+  double max_edge_gap_mm = 150.0;    // the longest unmeasured stretch of path bridged from its measured ends, >= 0
   bool IsValid(std::string* error) const;
 };
 
@@ -38,7 +47,9 @@ struct SicpRowReport {
   double across_mm = 0.0;
   double axis_mm = 0.0;
   double along_mm = 0.0;
-  double confidence = 0.0;           // [0, 1]: 1 measured by segments with edge data and residuals at the noise
+  double confidence = 0.0;      // [0, 1]: 1 measured (edge scan at the row) by segments with residuals at the noise
+  std::size_t edge_points = 0;  // scan points within edge_radius_mm of the compensated row, up to 2 min_edge_points
+  double gap_mm = 0.0;          // length of the unmeasured stretch the row lies in (0: measured)
   double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
 };
 
@@ -51,17 +62,28 @@ struct SicpCheck {
   std::vector<SicpRowReport> rows;            // one per trajectory row
   std::size_t untrusted_rows = 0;             // confidence below min_confidence
   std::size_t far_rows = 0;                   // farther than max_offset_mm from the contour
+  std::size_t unmeasured_rows = 0;            // fewer than min_edge_points scan points within edge_radius_mm
+  std::size_t bridged_rows = 0;               // unmeasured, on a stretch bridged from its measured ends
+  double longest_gap_mm = 0.0;                // the longest unmeasured stretch of path
   double min_confidence = 0.0;
   bool trusted = false;  // the registration converged and every row has min_confidence
   std::string reason;    // when not trusted: why, and what to change
   std::vector<std::string> warnings;
 };
 
+// Scan points within radius_mm of each row of the compensated trajectory (the edge support where the path runs),
+// counted up to cap (0: all; the checks need 2 min_edge_points at most).
+std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory& compensated, double radius_mm,
+                                           std::size_t cap = 0);
+
 // registration: from sicp_register (segments empty for the rigid and projection models: rows are then judged by
 // their distance from the contour only). nominal, compensated: same rows. Throws conform::Error for invalid options
 // or trajectories of different lengths.
-// scan_noise_mm: estimate_surface_noise (registration/surface_noise.h) of the scan the registration used (0: the median segment RMS stands in).
+// scan_noise_mm: estimate_surface_noise (registration/surface_noise.h) of the scan the registration used (0: the
+// median segment RMS stands in). row_edge_points: count_edge_points of that scan at the compensated rows (empty: a
+// row counts the edge points of the segment whose core holds it).
 SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& registration, const Trajectory& nominal,
-                          const Trajectory& compensated, const SicpCheckOptions& options, double scan_noise_mm = 0.0);
+                          const Trajectory& compensated, const SicpCheckOptions& options, double scan_noise_mm = 0.0,
+                          const std::vector<std::size_t>& row_edge_points = {});
 
 }  // namespace conform
