@@ -1,8 +1,12 @@
 // `conform export` end to end: a saddle path written by `conform saddle` exported in every format, the split, the same
 // bytes twice, and bad input (exit 2, the file and the problem named, nothing written).
 
+#include <algorithm>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,6 +18,57 @@ namespace conform {
 namespace {
 
 test::RunResult conform(const std::vector<std::string>& args) { return test::run(CONFORM_EXE, args); }
+
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+  std::size_t at(const std::string& name) const {
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      if (columns[i] == name) return i;
+    }
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+  }
+  double number(std::size_t row, const std::string& name) const { return std::stod(rows[row][at(name)]); }
+  Eigen::Vector3d vec(std::size_t row, const std::string& a, const std::string& b, const std::string& c) const {
+    return {number(row, a), number(row, b), number(row, c)};
+  }
+};
+
+Table table(const std::string& text) {
+  Table t;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> fields;
+    std::istringstream row(line);
+    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
+    if (t.columns.empty()) {
+      t.columns = fields;
+    } else {
+      t.rows.push_back(fields);
+    }
+  }
+  return t;
+}
+
+// The tool axis z of an exported frames row: the third column of the quaternion's matrix, written out.
+Eigen::Vector3d tool_axis(const Table& frames, std::size_t row) {
+  const double w = frames.number(row, "qw"), x = frames.number(row, "qx"), y = frames.number(row, "qy"),
+               z = frames.number(row, "qz");
+  return {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
+}
+
+// The job's file and its frames: row by row the same positions, z = -n.
+void expect_minus_normal(const Table& job, const Table& frames, const std::vector<std::size_t>& job_rows) {
+  ASSERT_EQ(frames.rows.size(), job_rows.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < job_rows.size(); ++k) {
+    const std::size_t r = job_rows[k];
+    EXPECT_LT((frames.vec(k, "x_mm", "y_mm", "z_mm") - job.vec(r, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
+    worst = std::max(worst, (tool_axis(frames, k) + job.vec(r, "nx", "ny", "nz").normalized()).norm());
+  }
+  EXPECT_LT(worst, 1e-9);
+}
 
 class ExportCommand : public ::testing::Test {
  protected:
@@ -58,6 +113,37 @@ TEST_F(ExportCommand, SameBytesTwiceAndTheSplit) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(dir.listing(), "a.src\nb.src\np.mod\np_1.mod\np_2.mod\np_3.mod\nseam.csv\n");
   EXPECT_NE(test::read_bytes(dir.file("p.mod")).find("p_3_run;"), std::string::npos);
+}
+
+// The weld-layers and profile jobs' own files, written by the jobs from generated data: every frame sits on its row's
+// point with z = -n (the normal of weld-layers points towards the torch, the profile's is the web normal).
+TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
+  ASSERT_EQ(conform({"generate", "eroded", "--out", dir.file("e.csv")}).exit_code, 0);
+  auto r = conform({"weld-layers", "--eroded", dir.file("e.csv"), "--reference", dir.file("e.reference.csv"),
+                    "--bead-spacing", "3", "--layer-height", "1", "--chord-error", "0.05", "--torch-distance", "2",
+                    "--out", dir.file("w.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = conform({"export", "--path", dir.file("w.csv"), "--format", "csv", "--approach-mm", "0", "--out",
+               dir.file("wf.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table weld = table(test::read_bytes(dir.file("w.csv")));
+  std::vector<std::size_t> all(weld.rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  expect_minus_normal(weld, table(test::read_bytes(dir.file("wf.csv"))), all);
+
+  ASSERT_EQ(conform({"generate", "profile", "--out", dir.file("p.csv"), "--seed", "8"}).exit_code, 0);
+  r = conform({"profile", "--edge", dir.file("p.csv"), "--features", dir.file("p.features.csv"), "--out",
+               dir.file("cut.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = conform({"export", "--path", dir.file("cut.csv"), "--format", "csv", "--approach-mm", "0", "--out",
+               dir.file("cf.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table cut = table(test::read_bytes(dir.file("cut.csv")));
+  std::vector<std::size_t> outline;  // centres (i = -1) are not cut
+  for (std::size_t i = 0; i < cut.rows.size(); ++i) {
+    if (cut.number(i, "i") >= 0) outline.push_back(i);
+  }
+  expect_minus_normal(cut, table(test::read_bytes(dir.file("cf.csv"))), outline);
 }
 
 TEST_F(ExportCommand, BadInputExitsTwoNamingTheFileAndWritesNothing) {

@@ -32,7 +32,10 @@ std::string program(const std::string& name, const std::string& comment, const s
                     const std::string& positions) {
   std::string text = "/PROG  " + upper(name) + "\n/ATTR\nCOMMENT\t\t= \"" + comment +
                      "\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n";
-  for (std::size_t i = 0; i < lines.size(); ++i) text += std::string(4 - std::min<std::size_t>(3, std::to_string(i + 1).size()), ' ') + std::to_string(i + 1) + ":" + lines[i] + "\n";
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string number = std::to_string(i + 1);
+    text += std::string(number.size() < 4 ? 4 - number.size() : 0, ' ') + number + ":" + lines[i] + "\n";
+  }
   return text + "/POS\n" + positions + "/END\n";
 }
 
@@ -74,7 +77,9 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
     out.files.push_back({options.name + ".ls", program(options.name, "conform export", main_lines, pos)});
     return out;
   }
-  for (std::size_t k = 0; k < parts.size(); ++k) main_lines.push_back(" CALL " + upper(options.name) + "_" + std::to_string(k + 1) + " ;");
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    main_lines.push_back(" CALL " + upper(options.name) + "_" + std::to_string(k + 1) + " ;");
+  }
   out.files.push_back({options.name + ".ls", program(options.name, "conform export", main_lines, "")});
   for (std::size_t k = 0; k < parts.size(); ++k) {
     std::vector<std::string> lines = {head, tool};
@@ -84,7 +89,7 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
       pos += positions[i];
     }
     const std::string name = options.name + "_" + std::to_string(k + 1);
-    out.files.push_back({name + ".ls", program(name, "conform export part", lines, pos)});
+    out.files.push_back({name + ".ls", program(name, "conform part", lines, pos)});
   }
   return out;
 }
