@@ -7,12 +7,8 @@
 #include <string>
 
 #include "command.h"
-#include "conform/core/atomic_file.h"
-#include "conform/core/csv.h"
 #include "conform/core/error.h"
-#include "conform/core/transform_io.h"
-#include "conform/toolpath/job_paths.h"
-#include "conform/toolpath/robot_program.h"
+#include "conform/pipelines/export.h"
 #include "json_values.h"
 #include "number_list.h"
 #include "terminal.h"
@@ -36,14 +32,16 @@ class ExportCommand : public Command {
                  "Program file to write (main file; parts and a .dtx beside it); its stem names the program "
                  "unless --name; required")
         ->required();
-    c.add_option("--frame", frame_path_, "T_base_part: 4x4 text transform placing the part in the robot base; "
-                                         "default identity");
+    c.add_option("--frame", frame_path_,
+                 "T_base_part: 4x4 text transform placing the part in the robot base; "
+                 "none: identity");
     c.add_option("--speed-mm-s", options_.speed_mm_s, "Speed along the path, mm/s");
     c.add_option("--approach-speed-mm-s", options_.approach_speed_mm_s, "Speed of approach and retract moves, mm/s");
     c.add_option("--approach-mm", options_.approach_mm,
                  "Approach and retract distance back along the tool axis (-z), mm; 0: none");
-    c.add_option("--name", name_, "Program name (letters, digits, _; starts with a letter); default: --out's "
-                                          "stem");
+    c.add_option("--name", name_,
+                 "Program name (letters, digits, _; starts with a letter); empty: --out's "
+                 "stem");
     c.add_option("--tool", options_.tool,
                  "Tool name (rapid tool0, krl TOOL_DATA[1], fanuc UT number 1, val3 tTool when empty)");
     c.add_option("--work-object", options_.work_object,
@@ -65,32 +63,24 @@ class ExportCommand : public Command {
   }
 
   int run() override {
-    ToolFrameOptions frame_options;
-    frame_options.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
-    if (!preferred_x_.empty()) frame_options.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    ExportJobOptions o;
+    o.path_csv = path_;
+    o.format = format_;
+    o.out_path = out_;
+    o.frame_path = frame_path_;
+    o.frames.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
+    if (!preferred_x_.empty()) o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    o.program = options_;
+    o.program.name = name_;
+    o.program.five_axis = !three_axis_;
     std::string why;
-    if (!frame_options.IsValid(&why)) throw Error("export: " + why);
-    if (!frame_path_.empty()) options_.T_base_part = read_transform(frame_path_);
-    const std::filesystem::path out(out_);
-    options_.name = name_.empty() ? out.stem().string() : name_;
-    options_.five_axis = !three_axis_;
-    options_.source = std::filesystem::path(path_).filename().string();
-    if (!options_.IsValid(&why)) {
-      throw Error("export: " + why + (name_.empty() ? " (the name is --out's stem; give --name)" : ""));
+    ProgramOptions named = o.program;
+    named.name = name_.empty() ? std::filesystem::path(out_).stem().string() : name_;
+    if (!named.IsValid(&why) && name_.empty()) {
+      throw Error("export: " + why + " (the name is --out's stem; give --name)");
     }
-
-    const CsvTable table = read_csv(path_);
-    ToolFrameFigures figures;
-    const ToolPath path = tool_path_from_csv(table, frame_options, &figures);
-    const Program program = write_program(path, format_, options_);
-    // The main file goes to --out; the others beside it, under their own names.
-    std::vector<std::string> written;
-    for (std::size_t i = 0; i < program.files.size(); ++i) {
-      const std::string target = i == 0 ? out_ : (out.parent_path() / program.files[i].name).string();
-      write_file_atomically(target, program.files[i].text);
-      written.push_back(target);
-    }
-    report(path, program, figures, written);
+    const ExportJobResult result = run_export(o);
+    report(result);
     return 0;
   }
 
@@ -100,37 +90,38 @@ class ExportCommand : public Command {
     return {v[0], v[1], v[2]};
   }
 
-  void report(const ToolPath& path, const Program& program, const ToolFrameFigures& f,
-              const std::vector<std::string>& written) const {
+  void report(const ExportJobResult& r) const {
+    const ToolFrameFigures& f = r.figures;
     const double max_step_deg = f.max_orientation_step_rad / kPi * 180.0;
     if (json_) {
-      print_json({{"job", path.job},
+      print_json({{"job", r.job},
                   {"format", format_},
-                  {"segments", path.segments.size()},
-                  {"frames", path.frames()},
-                  {"targets", program.targets},
-                  {"parts", program.parts},
+                  {"segments", r.segments},
+                  {"frames", r.frames},
+                  {"targets", r.targets},
+                  {"parts", r.parts},
                   {"max_orientation_step_deg", max_step_deg},
                   {"max_orientation_step_frame", f.max_step_index},
                   {"parallel_tangents", f.parallel_tangents},
                   {"repeated_points", f.repeated_points},
                   {"roll_limited", f.roll_limited},
-                  {"T_base_part", to_json(options_.T_base_part)},
-                  {"written", written}});
+                  {"T_base_part", to_json(r.T_base_part)},
+                  {"written", r.written}});
     } else {
-      std::printf("path          %s file, %zu segments, %zu frames\n", path.job.c_str(), path.segments.size(),
-                  path.frames());
-      std::printf("program       %s, %zu motion points (approach %g mm), %zu part%s\n", format_.c_str(),
-                  program.targets, options_.approach_mm, program.parts, program.parts == 1 ? "" : "s");
+      std::printf("path          %s file, %zu segments, %zu frames\n", r.job.c_str(), r.segments, r.frames);
+      std::printf("program       %s, %zu motion points (approach %g mm), %zu part%s\n", format_.c_str(), r.targets,
+                  options_.approach_mm, r.parts, r.parts == 1 ? "" : "s");
       std::printf("orientation   largest change between consecutive frames %.4f deg (frame %zu)\n", max_step_deg,
                   f.max_step_index);
       std::printf("degenerate    %zu tangents along the tool axis, %zu repeated points, %zu rolls limited\n",
                   f.parallel_tangents, f.repeated_points, f.roll_limited);
-      for (const std::string& w : written) std::printf("wrote         %s\n", w.c_str());
+      for (const std::string& w : r.written) std::printf("wrote         %s\n", w.c_str());
     }
     if (max_step_deg > 30.0) {
-      warn("export: warning: the tool turns by " + std::to_string(max_step_deg) + " deg between two consecutive "
-           "frames (frame " + std::to_string(f.max_step_index) + "): check for a wrist flip (--roll-cone-deg)");
+      warn("export: warning: the tool turns by " + std::to_string(max_step_deg) +
+           " deg between two consecutive "
+           "frames (frame " +
+           std::to_string(f.max_step_index) + "): check for a wrist flip (--roll-cone-deg)");
     }
   }
 

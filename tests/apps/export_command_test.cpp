@@ -73,8 +73,8 @@ void expect_minus_normal(const Table& job, const Table& frames, const std::vecto
 class ExportCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto r = conform({"saddle", "--R", "600", "--r", "150", "--start-pose-deg", "45", "--step-deg", "3",
-                            "--out", dir.file("seam.csv")});
+    const auto r = conform({"saddle", "--R", "600", "--r", "150", "--start-pose-deg", "45", "--step-deg", "3", "--out",
+                            dir.file("seam.csv")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   test::RunResult exporting(std::vector<std::string> more) {
@@ -87,8 +87,8 @@ class ExportCommand : public ::testing::Test {
 
 TEST_F(ExportCommand, EveryFormatWritesItsProgram) {
   const std::vector<std::pair<std::string, std::string>> formats = {
-      {"krl", "weld.src"}, {"rapid", "weld.mod"}, {"urscript", "weld.script"}, {"fanuc", "weld.ls"},
-      {"val3", "weld.pgx"}, {"gcode", "weld.nc"}, {"csv", "weld.csv"}};
+      {"krl", "weld.src"},  {"rapid", "weld.mod"}, {"urscript", "weld.script"}, {"fanuc", "weld.ls"},
+      {"val3", "weld.pgx"}, {"gcode", "weld.nc"},  {"csv", "weld.csv"}};
   for (const auto& [format, file] : formats) {
     SCOPED_TRACE(format);
     const auto r = exporting({"--format", format, "--out", dir.file(file), "--json"});
@@ -123,8 +123,8 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
                     "--bead-spacing", "3", "--layer-height", "1", "--chord-error", "0.05", "--torch-distance", "2",
                     "--out", dir.file("w.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = conform({"export", "--path", dir.file("w.csv"), "--format", "csv", "--approach-mm", "0", "--out",
-               dir.file("wf.csv")});
+  r = conform(
+      {"export", "--path", dir.file("w.csv"), "--format", "csv", "--approach-mm", "0", "--out", dir.file("wf.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table weld = table(test::read_bytes(dir.file("w.csv")));
   std::vector<std::size_t> all(weld.rows.size());
@@ -132,11 +132,11 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   expect_minus_normal(weld, table(test::read_bytes(dir.file("wf.csv"))), all);
 
   ASSERT_EQ(conform({"generate", "profile", "--out", dir.file("p.csv"), "--seed", "8"}).exit_code, 0);
-  r = conform({"profile", "--edge", dir.file("p.csv"), "--features", dir.file("p.features.csv"), "--out",
-               dir.file("cut.csv")});
+  r = conform(
+      {"profile", "--edge", dir.file("p.csv"), "--features", dir.file("p.features.csv"), "--out", dir.file("cut.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = conform({"export", "--path", dir.file("cut.csv"), "--format", "csv", "--approach-mm", "0", "--out",
-               dir.file("cf.csv")});
+  r = conform(
+      {"export", "--path", dir.file("cut.csv"), "--format", "csv", "--approach-mm", "0", "--out", dir.file("cf.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table cut = table(test::read_bytes(dir.file("cut.csv")));
   std::vector<std::size_t> outline;  // centres (i = -1) are not cut

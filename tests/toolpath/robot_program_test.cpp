@@ -90,29 +90,29 @@ const std::string N = "(-?[0-9]+\\.?[0-9]*(?:[eE][-+]?[0-9]+)?)";
 std::vector<Parsed> parse(const std::string& format, const std::string& text) {
   std::vector<Parsed> out;
   if (format == "krl") {
-    for (const auto& v : all_matches(text, "LIN \\{X " + N + ", Y " + N + ", Z " + N + ", A " + N + ", B " + N +
-                                               ", C " + N + "\\}")) {
+    for (const auto& v :
+         all_matches(text, "LIN \\{X " + N + ", Y " + N + ", Z " + N + ", A " + N + ", B " + N + ", C " + N + "\\}")) {
       out.push_back({{v[0], v[1], v[2]}, Rz(rad(v[3])) * Ry(rad(v[4])) * Rx(rad(v[5]))});
     }
   } else if (format == "rapid") {
-    for (const auto& v : all_matches(text, "robtarget p[0-9]+ := \\[\\[" + N + "," + N + "," + N + "\\],\\[" + N +
-                                               "," + N + "," + N + "," + N + "\\]")) {
+    for (const auto& v : all_matches(text, "robtarget p[0-9]+ := \\[\\[" + N + "," + N + "," + N + "\\],\\[" + N + "," +
+                                               N + "," + N + "," + N + "\\]")) {
       out.push_back({{v[0], v[1], v[2]}, from_quaternion(v[3], v[4], v[5], v[6])});
     }
   } else if (format == "urscript") {
-    for (const auto& v : all_matches(text, "movel\\(p\\[" + N + ", " + N + ", " + N + ", " + N + ", " + N + ", " +
-                                               N + "\\]")) {
+    for (const auto& v :
+         all_matches(text, "movel\\(p\\[" + N + ", " + N + ", " + N + ", " + N + ", " + N + ", " + N + "\\]")) {
       out.push_back({Eigen::Vector3d(v[0], v[1], v[2]) * 1000.0, from_rotation_vector({v[3], v[4], v[5]})});
     }
   } else if (format == "fanuc") {
-    for (const auto& v : all_matches(text, "X = " + N + "  mm,\tY = " + N + "  mm,\tZ = " + N + "  mm,\n\tW = " +
-                                               N + " deg,\tP = " + N + " deg,\tR = " + N + " deg")) {
+    for (const auto& v : all_matches(text, "X = " + N + "  mm,\tY = " + N + "  mm,\tZ = " + N + "  mm,\n\tW = " + N +
+                                               " deg,\tP = " + N + " deg,\tR = " + N + " deg")) {
       // W, P, R: about the fixed x, then y, then z: R = Rz(R) Ry(P) Rx(W).
       out.push_back({{v[0], v[1], v[2]}, Rz(rad(v[5])) * Ry(rad(v[4])) * Rx(rad(v[3]))});
     }
   } else if (format == "val3") {
-    for (const auto& v : all_matches(text, "x=\"" + N + "\" y=\"" + N + "\" z=\"" + N + "\" rx=\"" + N +
-                                               "\" ry=\"" + N + "\" rz=\"" + N + "\"")) {
+    for (const auto& v : all_matches(text, "x=\"" + N + "\" y=\"" + N + "\" z=\"" + N + "\" rx=\"" + N + "\" ry=\"" +
+                                               N + "\" rz=\"" + N + "\"")) {
       out.push_back({{v[0], v[1], v[2]}, Rx(rad(v[3])) * Ry(rad(v[4])) * Rz(rad(v[5]))});
     }
   } else if (format == "gcode") {
@@ -122,8 +122,8 @@ std::vector<Parsed> parse(const std::string& format, const std::string& text) {
       out.push_back({{v[0], v[1], v[2]}, r});
     }
   } else if (format == "csv") {
-    for (const auto& v : all_matches(text, "\n[0-9]+,[0-9]+,[a-z]+," + N + "," + N + "," + N + "," + N + "," + N +
-                                               "," + N + "," + N + "," + N + "," + N + "," + N)) {
+    for (const auto& v : all_matches(text, "\n[0-9]+,[0-9]+,[a-z]+," + N + "," + N + "," + N + "," + N + "," + N + "," +
+                                               N + "," + N + "," + N + "," + N + "," + N)) {
       const Eigen::Matrix3d q = from_quaternion(v[3], v[4], v[5], v[6]);
       const Eigen::Matrix3d abc = Rz(rad(v[7])) * Ry(rad(v[8])) * Rx(rad(v[9]));
       EXPECT_LT(angle_between(q, abc), kAxisTol);
@@ -137,7 +137,11 @@ std::vector<Parsed> parse(const std::string& format, const std::string& text) {
 // random frames from a seeded generator; positions spread over a robot's reach.
 std::vector<ToolFrame> known_frames() {
   std::vector<Eigen::Matrix3d> rotations = {Eigen::Matrix3d::Identity(),
-                                            Rx(kPi / 2), Ry(kPi / 2), Rz(kPi / 2), Rx(-kPi / 2), Rz(kPi),
+                                            Rx(kPi / 2),
+                                            Ry(kPi / 2),
+                                            Rz(kPi / 2),
+                                            Rx(-kPi / 2),
+                                            Rz(kPi),
                                             Rz(rad(30)) * Ry(kPi / 2) * Rx(rad(10)),
                                             Rz(rad(-40)) * Ry(-kPi / 2) * Rx(rad(25)),
                                             Rz(rad(30)) * Ry(kPi / 2 - 1e-9) * Rx(rad(10))};

@@ -259,9 +259,9 @@ TEST(JobPaths, BadFilesAreRefusedNamingTheProblem) {
   EXPECT_NE(message("x_mm,y_mm,z_mm,nx,ny,nz\n0,0,0,0,0,nan\n").find("test.csv:2"), std::string::npos);
   EXPECT_NE(message("x_mm,y_mm,z_mm,nx,ny,nz\n0,0,0,0,0,2\n").find("not a unit vector"), std::string::npos);
   EXPECT_NE(message("x_mm,y_mm,z_mm,nx,ny,nz\n").find("no rows"), std::string::npos);
-  EXPECT_NE(message("phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz\n0,0,0,0,1,0,0,1,0,0,0,0,1\n")
-                .find("--out-cut"),
-            std::string::npos);
+  EXPECT_NE(
+      message("phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz\n0,0,0,0,1,0,0,1,0,0,0,0,1\n").find("--out-cut"),
+      std::string::npos);
   EXPECT_NE(message("layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz\n1,1,0,0,0,0,0,0,1\n1,2,0,0,0,0,0,0,1\n1,1,1,0,0,0,0,0,1\n")
                 .find("comes back"),
             std::string::npos);

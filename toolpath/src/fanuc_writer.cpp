@@ -30,8 +30,8 @@ std::string frame_number(const std::string& given, const char* what) {
 
 std::string program(const std::string& name, const std::string& comment, const std::vector<std::string>& lines,
                     const std::string& positions) {
-  std::string text = "/PROG  " + upper(name) + "\n/ATTR\nCOMMENT\t\t= \"" + comment +
-                     "\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n";
+  std::string text =
+      "/PROG  " + upper(name) + "\n/ATTR\nCOMMENT\t\t= \"" + comment + "\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string number = std::to_string(i + 1);
     text += std::string(number.size() < 4 ? 4 - number.size() : 0, ' ') + number + ":" + lines[i] + "\n";
@@ -62,8 +62,8 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
     const Eigen::Vector3d& p = t.position_mm;
     positions[i] = "P[" + std::to_string(local) + "]{\n   GP1:\n\tUF : " + uf + ", UT : " + ut +
                    ",\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = " + num(p.x(), 6) + "  mm,\tY = " + num(p.y(), 6) +
-                   "  mm,\tZ = " + num(p.z(), 6) + "  mm,\n\tW = " + num(abc(2), 9) + " deg,\tP = " +
-                   num(abc(1), 9) + " deg,\tR = " + num(abc(0), 9) + " deg\n};\n";
+                   "  mm,\tZ = " + num(p.z(), 6) + "  mm,\n\tW = " + num(abc(2), 9) + " deg,\tP = " + num(abc(1), 9) +
+                   " deg,\tR = " + num(abc(0), 9) + " deg\n};\n";
   }
   Program out;
   out.parts = parts.size();

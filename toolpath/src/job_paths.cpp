@@ -139,13 +139,15 @@ std::string detect_path_job(const CsvTable& t) {
   if (xyz && has_all(t, {"theta_rad", "pose_rad"})) return "saddle";
   if (xyz && has_all(t, {"phi_rad", "dx", "dy", "dz"})) return "tube-joint";
   if (xyz && has_all(t, {"nsx", "nlx"})) {
-    throw Error(t.path + ": a tube-joint path file (seam and normals) has no tool; export the cut file (--out-cut) "
-                         "or the weld file (--out-weld) instead");
+    throw Error(t.path +
+                ": a tube-joint path file (seam and normals) has no tool; export the cut file (--out-cut) "
+                "or the weld file (--out-weld) instead");
   }
   if (xyz && normal) return "sicp";
-  throw Error(t.path + ": not a path file of a conform job: the header needs x_mm,y_mm,z_mm and the tool's direction: "
-                       "dx,dy,dz with phi_rad (tube-joint cut or weld), theta_rad,pose_rad (saddle), nx,ny,nz (sicp), "
-                       "with id,i,dx,dy,dz (profile) or with layer,path,i (weld-layers)");
+  throw Error(t.path +
+              ": not a path file of a conform job: the header needs x_mm,y_mm,z_mm and the tool's direction: "
+              "dx,dy,dz with phi_rad (tube-joint cut or weld), theta_rad,pose_rad (saddle), nx,ny,nz (sicp), "
+              "with id,i,dx,dy,dz (profile) or with layer,path,i (weld-layers)");
 }
 
 ToolPath tool_path_from_csv(const CsvTable& table, const ToolFrameOptions& options, ToolFrameFigures* figures) {

@@ -26,8 +26,8 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
     }
     const bool blend = t.kind == MoveKind::kPath && i + 1 < targets.size() && targets[i + 1].kind == MoveKind::kPath;
     line += "LIN {X " + num(t.position_mm.x(), 6) + ", Y " + num(t.position_mm.y(), 6) + ", Z " +
-            num(t.position_mm.z(), 6) + ", A " + num(abc(0), 9) + ", B " + num(abc(1), 9) + ", C " +
-            num(abc(2), 9) + "}" + (blend ? " C_DIS" : "") + "\n";
+            num(t.position_mm.z(), 6) + ", A " + num(abc(0), 9) + ", B " + num(abc(1), 9) + ", C " + num(abc(2), 9) +
+            "}" + (blend ? " C_DIS" : "") + "\n";
     moves.push_back(line);
   }
   const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
@@ -50,8 +50,8 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
     std::string text = "&ACCESS RVP\n&REL 1\nDEF " + name + "( )\n; part " + std::to_string(k + 1) + " of " +
                        std::to_string(parts.size()) + "\n";
     // Each part sets its speed again: it may start on a path move.
-    text += speed_line(targets[parts[k].first].kind == MoveKind::kPath ? options.speed_mm_s
-                                                                       : options.approach_speed_mm_s);
+    text +=
+        speed_line(targets[parts[k].first].kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s);
     for (std::size_t i = parts[k].first; i < parts[k].second; ++i) text += moves[i];
     text += "END\n";
     program.files.push_back({name + ".src", text});

@@ -54,7 +54,8 @@ Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOption
     return program;
   }
   std::string body = "  PROC main()\n    ConfL \\Off;\n";
-  for (std::size_t k = 0; k < parts.size(); ++k) body += "    " + options.name + "_" + std::to_string(k + 1) + "_run;\n";
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    body += "    " + options.name + "_" + std::to_string(k + 1) + "_run;\n";
   body += "  ENDPROC\n";
   program.files.push_back({options.name + ".mod", module(options.name, body, {}, options)});
   for (std::size_t k = 0; k < parts.size(); ++k) {

@@ -14,7 +14,8 @@ namespace {
 
 bool identifier(const std::string& s) {
   if (s.empty() || s.size() > 20 || !std::isalpha(static_cast<unsigned char>(s[0]))) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 // A tool or work-object name goes into program text verbatim: letters, digits and _ [ ] only, so it cannot end a
@@ -36,7 +37,8 @@ bool rigid(const Eigen::Isometry3d& T) {
 bool ProgramOptions::IsValid(std::string* error) const {
   std::ostringstream why;
   if (!(std::isfinite(speed_mm_s) && speed_mm_s > 0.0)) why << "the speed must be positive; ";
-  if (!(std::isfinite(approach_speed_mm_s) && approach_speed_mm_s > 0.0)) why << "the approach speed must be positive; ";
+  if (!(std::isfinite(approach_speed_mm_s) && approach_speed_mm_s > 0.0))
+    why << "the approach speed must be positive; ";
   if (!(std::isfinite(approach_mm) && approach_mm >= 0.0)) why << "the approach distance must be >= 0; ";
   if (!identifier(name)) {
     why << "the program name '" << name << "' must be 1 to 20 letters, digits or _, starting with a letter; ";
@@ -138,8 +140,7 @@ std::string provenance(const ProgramOptions& options, std::size_t targets) {
   for (char& c : source) {
     if (c < 0x20 || c > 0x7e || c == '"' || c == '\'' || c == ';' || c == '!' || c == '(' || c == ')') c = '_';
   }
-  return "conform export of " + source + ": " +
-         std::to_string(targets) + " points, mm, base frame";
+  return "conform export of " + source + ": " + std::to_string(targets) + " points, mm, base frame";
 }
 
 }  // namespace detail

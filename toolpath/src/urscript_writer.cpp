@@ -19,8 +19,8 @@ Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOpt
     rv = rotation_vector(t.rotation, i == 0 ? nullptr : &rv);
     const double v = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) / 1000.0;
     const Eigen::Vector3d p = t.position_mm / 1000.0;
-    text += "  movel(p[" + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " + num(p.z(), 9) + ", " + num(rv.x(), 12) +
-            ", " + num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) + ")\n";
+    text += "  movel(p[" + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " + num(p.z(), 9) + ", " + num(rv.x(), 12) + ", " +
+            num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) + ")\n";
   }
   text += "end\n";
   Program program;

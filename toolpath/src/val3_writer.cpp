@@ -15,11 +15,16 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
       "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!-- " + provenance(options, targets.size()) +
       "; rx ry rz in degrees, X-Y'-Z'' -->\n<Database xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
       "xmlns=\"http://www.staubli.com/robotics/VAL3/Data/2\">\n  <Datas>\n";
-  data += "    <Data name=\"mPath\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
-          "      <Value key=\"0\" tvel=\"" + num(options.speed_mm_s, 3) + "\" blend=\"joint\" leave=\"0.5\" "
-          "reach=\"0.5\" />\n    </Data>\n";
-  data += "    <Data name=\"mApproach\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
-          "      <Value key=\"0\" tvel=\"" + num(options.approach_speed_mm_s, 3) + "\" blend=\"off\" />\n    </Data>\n";
+  data +=
+      "    <Data name=\"mPath\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
+      "      <Value key=\"0\" tvel=\"" +
+      num(options.speed_mm_s, 3) +
+      "\" blend=\"joint\" leave=\"0.5\" "
+      "reach=\"0.5\" />\n    </Data>\n";
+  data +=
+      "    <Data name=\"mApproach\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
+      "      <Value key=\"0\" tvel=\"" +
+      num(options.approach_speed_mm_s, 3) + "\" blend=\"off\" />\n    </Data>\n";
   data += "    <Data name=\"pPath\" access=\"private\" xsi:type=\"array\" type=\"pointRx\" size=\"" +
           std::to_string(targets.size()) + "\">\n";
   std::string code = "begin\n";
@@ -28,8 +33,8 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
     const RobotTarget& t = targets[i];
     r = euler_xyz_deg(t.rotation, i == 0 ? nullptr : &r);
     data += "      <Value key=\"" + std::to_string(i) + "\" x=\"" + num(t.position_mm.x(), 6) + "\" y=\"" +
-            num(t.position_mm.y(), 6) + "\" z=\"" + num(t.position_mm.z(), 6) + "\" rx=\"" + num(r(0), 9) +
-            "\" ry=\"" + num(r(1), 9) + "\" rz=\"" + num(r(2), 9) + "\" fatherId=\"" + frame + "[0]\" />\n";
+            num(t.position_mm.y(), 6) + "\" z=\"" + num(t.position_mm.z(), 6) + "\" rx=\"" + num(r(0), 9) + "\" ry=\"" +
+            num(r(1), 9) + "\" rz=\"" + num(r(2), 9) + "\" fatherId=\"" + frame + "[0]\" />\n";
     code += "  movel(pPath[" + std::to_string(i) + "], " + tool + ", " +
             (t.kind == MoveKind::kPath ? "mPath" : "mApproach") + ")\n";
   }
@@ -37,8 +42,8 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
   code += "  waitEndMove()\nend\n";
   const std::string pgx =
       "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Programs xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-      "xmlns=\"http://www.staubli.com/robotics/VAL3/Program/2\">\n  <Program name=\"" + options.name +
-      "\" access=\"public\">\n    <Code><![CDATA[\n" + code + "]]></Code>\n  </Program>\n</Programs>\n";
+      "xmlns=\"http://www.staubli.com/robotics/VAL3/Program/2\">\n  <Program name=\"" +
+      options.name + "\" access=\"public\">\n    <Code><![CDATA[\n" + code + "]]></Code>\n  </Program>\n</Programs>\n";
   Program program;
   program.files.push_back({options.name + ".pgx", pgx});
   program.files.push_back({options.name + ".dtx", data});

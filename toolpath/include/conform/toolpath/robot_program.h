@@ -22,12 +22,12 @@ namespace conform {
 
 struct ProgramOptions {
   Eigen::Isometry3d T_base_part = Eigen::Isometry3d::Identity();  // places the path (part frame) in the robot base
-  double speed_mm_s = 10.0;            // along the path, mm/s
-  double approach_speed_mm_s = 50.0;   // approach and retract moves, mm/s
-  double approach_mm = 50.0;           // approach and retract distance along -z (back along the tool axis), mm; 0: none
-  std::string name = "conform_path";   // program / module name (letters, digits, '_'; starts with a letter)
-  std::string tool;                    // tool name (format's default when empty: tool0, TOOL_DATA[1], UT 1, tTool)
-  std::string work_object;             // work object / base (wobj0, BASE_DATA[1], UF 1, fPart)
+  double speed_mm_s = 10.0;                                       // along the path, mm/s
+  double approach_speed_mm_s = 50.0;                              // approach and retract moves, mm/s
+  double approach_mm = 50.0;          // approach and retract distance along -z (back along the tool axis), mm; 0: none
+  std::string name = "conform_path";  // program / module name (letters, digits, '_'; starts with a letter)
+  std::string tool;                   // tool name (format's default when empty: tool0, TOOL_DATA[1], UT 1, tTool)
+  std::string work_object;            // work object / base (wobj0, BASE_DATA[1], UF 1, fPart)
   // Controller limit: most motion points per file; a longer program is split into parts called from the main file
   // (krl, rapid, fanuc, val3). 0: the format's default (krl 2000, rapid 2000, fanuc 1000, val3 5000); never split
   // for urscript, gcode, csv.

@@ -16,7 +16,7 @@
 namespace conform {
 
 struct ToolFrame {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // tool centre point, mm
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();      // tool centre point, mm
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns x (travel), y, z (tool axis) in the path's frame
 };
 
