@@ -115,8 +115,9 @@ TEST_F(ExportCommand, SameBytesTwiceAndTheSplit) {
   EXPECT_NE(test::read_bytes(dir.file("p.mod")).find("p_3_run;"), std::string::npos);
 }
 
-// The weld-layers and profile jobs' own files, written by the jobs from generated data: every frame sits on its row's
-// point with z = -n (the normal of weld-layers points towards the torch, the profile's is the web normal).
+// The weld-layers, profile and tube-joint jobs' own files, written by the jobs from generated data: every frame sits
+// on its row's point with z = -n (the normal of weld-layers points towards the torch, the profile's is the web
+// normal) or z = +d (tube-joint's cutting direction).
 TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   ASSERT_EQ(conform({"generate", "eroded", "--out", dir.file("e.csv")}).exit_code, 0);
   auto r = conform({"weld-layers", "--eroded", dir.file("e.csv"), "--reference", dir.file("e.reference.csv"),
@@ -144,6 +145,27 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
     if (cut.number(i, "i") >= 0) outline.push_back(i);
   }
   expect_minus_normal(cut, table(test::read_bytes(dir.file("cf.csv"))), outline);
+
+  // tube-joint: z = +d of the cut file, and the closed seam ends on its first frame.
+  r = conform({"generate", "tube-joint", "--out-leg", dir.file("leg.ply"), "--out-stub", dir.file("stub.ply"),
+               "--out-truth", dir.file("truth.csv"), "--edge", "12", "--truth-points", "90", "--pitch-deg", "90",
+               "--offset", "0"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = conform({"tube-joint", "--leg", dir.file("leg.ply"), "--stub", dir.file("stub.ply"), "--step-deg", "10",
+               "--pitch-deg", "90", "--offset", "0", "--protrusion", "1100", "--groove-deg", "30,45,20,45", "--out-cut",
+               dir.file("tc.csv"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = conform(
+      {"export", "--path", dir.file("tc.csv"), "--format", "csv", "--approach-mm", "0", "--out", dir.file("tf.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table tube = table(test::read_bytes(dir.file("tc.csv")));
+  const Table frames = table(test::read_bytes(dir.file("tf.csv")));
+  ASSERT_EQ(frames.rows.size(), tube.rows.size() + 1);
+  for (std::size_t i = 0; i <= tube.rows.size(); ++i) {
+    const std::size_t row = i % tube.rows.size();
+    EXPECT_LT((frames.vec(i, "x_mm", "y_mm", "z_mm") - tube.vec(row, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
+    EXPECT_LT((tool_axis(frames, i) - tube.vec(row, "dx", "dy", "dz").normalized()).norm(), 1e-9) << i;
+  }
 }
 
 TEST_F(ExportCommand, BadInputExitsTwoNamingTheFileAndWritesNothing) {
