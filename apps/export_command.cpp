@@ -69,7 +69,7 @@ class ExportCommand : public Command {
     o.out_path = out_;
     o.frame_path = frame_path_;
     o.frames.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
-    if (!preferred_x_.empty()) o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
     o.program = options_;
     o.program.name = name_;
     o.program.five_axis = !three_axis_;
@@ -133,7 +133,7 @@ class ExportCommand : public Command {
   std::string name_;
   bool three_axis_ = false;
   double roll_cone_deg_ = 0.0;
-  std::string preferred_x_;
+  std::string preferred_x_ = "1,0,0";
   bool json_ = false;
 };
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include "conform/core/error.h"
@@ -58,7 +59,9 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
     const bool path = t.kind == MoveKind::kPath;
     const bool blend = path && i + 1 < targets.size() && targets[i + 1].kind == MoveKind::kPath;
     const double speed = path ? options.speed_mm_s : options.approach_speed_mm_s;
-    moves[i] = "L P[" + std::to_string(local) + "] " + num(speed, 0) + "mm/sec " + (blend ? "CNT100" : "FINE") + " ;";
+    // TP speeds are whole mm/sec, at least 1.
+    moves[i] = "L P[" + std::to_string(local) + "] " + num(std::max(1.0, std::round(speed)), 0) + "mm/sec " +
+               (blend ? "CNT100" : "FINE") + " ;";
     const Eigen::Vector3d& p = t.position_mm;
     positions[i] = "P[" + std::to_string(local) + "]{\n   GP1:\n\tUF : " + uf + ", UT : " + ut +
                    ",\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = " + num(p.x(), 6) + "  mm,\tY = " + num(p.y(), 6) +
