@@ -115,8 +115,8 @@ TEST_F(ExportCommand, SameBytesTwiceAndTheSplit) {
   EXPECT_NE(test::read_bytes(dir.file("p.mod")).find("p_3_run;"), std::string::npos);
 }
 
-// The weld-layers, profile and tube-joint jobs' own files, written by the jobs from generated data: every frame sits
-// on its row's point with z = -n (the normal of weld-layers points towards the torch, the profile's is the web
+// The weld-layers, profile, sicp and tube-joint jobs' own files, written by the jobs from generated data: every frame
+// sits on its row's point with z = -n (the normal of weld-layers points towards the torch, the profile's is the web
 // normal) or z = +d (tube-joint's cutting direction).
 TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   ASSERT_EQ(conform({"generate", "eroded", "--out", dir.file("e.csv")}).exit_code, 0);
@@ -145,6 +145,16 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
     if (cut.number(i, "i") >= 0) outline.push_back(i);
   }
   expect_minus_normal(cut, table(test::read_bytes(dir.file("cf.csv"))), outline);
+
+  // sicp: the generated trajectory (the file sicp reads and writes), z = -n.
+  ASSERT_EQ(conform({"generate", "plate", "--out", dir.file("plate.ply")}).exit_code, 0);
+  r = conform({"export", "--path", dir.file("plate.trajectory.csv"), "--format", "csv", "--approach-mm", "0", "--out",
+               dir.file("sf.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table trajectory = table(test::read_bytes(dir.file("plate.trajectory.csv")));
+  std::vector<std::size_t> rows(trajectory.rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+  expect_minus_normal(trajectory, table(test::read_bytes(dir.file("sf.csv"))), rows);
 
   // tube-joint: z = +d of the cut file, and the closed seam ends on its first frame.
   r = conform({"generate", "tube-joint", "--out-leg", dir.file("leg.ply"), "--out-stub", dir.file("stub.ply"),
