@@ -333,5 +333,17 @@ TEST(RobotProgram, SameInputSameBytesAndBadOptionsRefused) {
   EXPECT_THROW(write_program(path_of(frames), "fanuc", o), Error);  // UT is a number
 }
 
+TEST(RobotProgram, AFileNameCannotEndAComment) {
+  ProgramOptions o = no_approach();
+  o.source = "a--b;c)\nLIN {X 1}<!--";
+  const std::vector<ToolFrame> frames = known_frames();
+  const Program val3 = write_program(path_of(frames), "val3", o);
+  const std::string& dtx = val3.files[1].text;
+  EXPECT_EQ(dtx.find("--", dtx.find("<!--") + 4), dtx.find("-->"));  // the comment's only "--" is its end
+  const std::string krl = all_text(write_program(path_of(frames), "krl", o));
+  EXPECT_EQ(parse("krl", krl).size(), frames.size());  // no extra LIN from the name
+  EXPECT_EQ(krl.find("b;c"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace conform

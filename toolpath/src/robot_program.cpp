@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
@@ -138,8 +139,10 @@ std::string provenance(const ProgramOptions& options, std::size_t targets) {
   std::string source = options.source.empty() ? std::string("a path") : options.source;
   // Into a comment: nothing that could end it or the line.
   for (char& c : source) {
-    if (c < 0x20 || c > 0x7e || c == '"' || c == '\'' || c == ';' || c == '!' || c == '(' || c == ')') c = '_';
+    if (c < 0x20 || c > 0x7e || std::string_view("\"';!()<>&").find(c) != std::string_view::npos) c = '_';
   }
+  // Nor "--", which would end VAL3's XML comment.
+  for (std::size_t at; (at = source.find("--")) != std::string::npos;) source[at + 1] = '_';
   return "conform export of " + source + ": " + std::to_string(targets) + " points, mm, base frame";
 }
 
