@@ -111,8 +111,15 @@ TEST_F(ExportCommand, SameBytesTwiceAndTheSplit) {
   EXPECT_EQ(test::read_bytes(dir.file("a.src")), test::read_bytes(dir.file("b.src")));
   const auto r = exporting({"--format", "rapid", "--out", dir.file("p.mod"), "--max-points", "50"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(dir.listing(), "a.src\nb.src\np.mod\np_1.mod\np_2.mod\np_3.mod\nseam.csv\n");
+  EXPECT_EQ(dir.listing(), "a.src\nb.src\np.mod\np_1.mod\np_2.mod\np_3.mod\nseam.csv\n");  // before f.csv
   EXPECT_NE(test::read_bytes(dir.file("p.mod")).find("p_3_run;"), std::string::npos);
+  // The frames csv read back as a path: the same motion points (its approach rows left out, made again).
+  ASSERT_EQ(exporting({"--format", "csv", "--out", dir.file("f.csv")}).exit_code, 0);
+  const auto again =
+      conform({"export", "--path", dir.file("f.csv"), "--format", "krl", "--out", dir.file("g.src"), "--json"});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(again.out)["job"], "frames");
+  EXPECT_EQ(nlohmann::json::parse(again.out)["targets"], 123);
 }
 
 // The weld-layers, profile, sicp and tube-joint jobs' own files, written by the jobs from generated data: every frame

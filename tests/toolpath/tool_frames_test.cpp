@@ -246,6 +246,22 @@ TEST(JobPaths, EachJobsColumnsAndSigns) {
   EXPECT_EQ(p.segments[2].name, "layer 2 path 1");
 }
 
+TEST(JobPaths, FrameColumnsAreTakenAsGiven) {
+  // 90 deg about x: z = (0, -1, 0); the approach row is left out, segments split by their column.
+  const double h = std::sqrt(0.5);
+  const std::string q = std::to_string(h);
+  const ToolPath p = tool_path_from_csv(
+      table("i,segment,kind,x_mm,y_mm,z_mm,qw,qx,qy,qz\n0,0,approach,0,0,50,1,0,0,0\n1,0,path,0,0,0," + q + "," + q +
+            ",0,0\n2,0,path,1,0,0,1,0,0,0\n3,1,path,5,0,0,1,0,0,0\n"),
+      {});
+  EXPECT_EQ(p.job, "frames");
+  ASSERT_EQ(p.segments.size(), 2u);
+  ASSERT_EQ(p.segments[0].frames.size(), 2u);
+  expect_frame(p.segments[0].frames[0], {0, -1, 0}, 1e-6);
+  EXPECT_LT((p.segments[1].frames[0].rotation - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+  EXPECT_THROW(tool_path_from_csv(table("x_mm,y_mm,z_mm,qw,qx,qy,qz\n0,0,0,2,0,0,0\n"), {}), Error);
+}
+
 TEST(JobPaths, BadFilesAreRefusedNamingTheProblem) {
   auto message = [](const std::string& text) {
     try {

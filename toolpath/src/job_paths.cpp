@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include <Eigen/Geometry>
+
 #include "conform/core/error.h"
 
 namespace conform {
@@ -122,6 +124,38 @@ std::vector<Grouped> weld_layers(const CsvTable& t) {
   return std::move(groups.groups());
 }
 
+// Frames given as columns (conform export's csv format, or a job that writes qw,qx,qy,qz): taken as they are, one
+// segment per `segment` value; approach and retract rows (`kind`) are left out, the program makes its own.
+std::vector<ToolSegment> given_frames(const CsvTable& t) {
+  std::vector<ToolSegment> segments;
+  const bool has_segment = t.has_column("segment");
+  const bool has_kind = t.has_column("kind");
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    if (has_kind && t.text(r, t.column("kind")) != "path") continue;
+    const std::string key = has_segment ? t.text(r, t.column("segment")) : "frames";
+    if (segments.empty() || segments.back().name != key) {
+      for (const ToolSegment& s : segments) {
+        if (s.name == key) {
+          throw Error(t.path + ":" + std::to_string(t.line_numbers[r]) + ": segment '" + key +
+                      "' comes back after other rows; a path's rows must be consecutive");
+        }
+      }
+      segments.push_back({key, {}});
+    }
+    const Eigen::Vector4d q(t.number(r, t.column("qw")), t.number(r, t.column("qx")), t.number(r, t.column("qy")),
+                            t.number(r, t.column("qz")));
+    if (!(std::abs(q.norm() - 1.0) <= 1e-3)) {
+      throw Error(t.path + ":" + std::to_string(t.line_numbers[r]) + ": the quaternion (qw, qx, qy, qz) is not of " +
+                  "unit length (" + std::to_string(q.norm()) + ")");
+    }
+    ToolFrame f;
+    f.position = position(t, r);
+    f.rotation = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
+    segments.back().frames.push_back(f);
+  }
+  return segments;
+}
+
 bool has_all(const CsvTable& t, std::initializer_list<const char*> names) {
   for (const char* name : names) {
     if (!t.has_column(name)) return false;
@@ -134,6 +168,7 @@ bool has_all(const CsvTable& t, std::initializer_list<const char*> names) {
 std::string detect_path_job(const CsvTable& t) {
   const bool xyz = has_all(t, {"x_mm", "y_mm", "z_mm"});
   const bool normal = has_all(t, {"nx", "ny", "nz"});
+  if (xyz && has_all(t, {"qw", "qx", "qy", "qz"})) return "frames";
   if (xyz && normal && has_all(t, {"layer", "path", "i"})) return "weld-layers";
   if (xyz && normal && has_all(t, {"id", "i", "dx", "dy", "dz"})) return "profile";
   if (xyz && has_all(t, {"theta_rad", "pose_rad"})) return "saddle";
@@ -162,13 +197,14 @@ ToolPath tool_path_from_csv(const CsvTable& table, const ToolFrameOptions& optio
   if (path.job == "weld-layers") groups = weld_layers(table);
   ToolFrameFigures local;
   ToolFrameFigures& fig = figures != nullptr ? *figures : local;
+  if (path.job == "frames") path.segments = given_frames(table);
   for (Grouped& g : groups) {
     ToolSegment segment{g.name, build_tool_frames(g.points, options, &fig)};
     // A closed seam ends where it began.
     if (g.points.closed && !segment.frames.empty()) segment.frames.push_back(segment.frames.front());
     path.segments.push_back(std::move(segment));
   }
-  if (path.segments.empty()) throw Error(table.path + ": no path rows (only centres, i = -1)");
+  if (path.segments.empty()) throw Error(table.path + ": no path rows (only centres, i = -1, or approach moves)");
   measure_orientation_steps(path, &fig);
   return path;
 }

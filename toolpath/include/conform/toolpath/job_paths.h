@@ -8,6 +8,7 @@
 //   sicp           x_mm,y_mm,z_mm,nx,ny,nz                        -n (n points out of the material)      one
 //   profile        id,i,x_mm,y_mm,z_mm,nx,ny,nz,dx,dy,dz          -n (the web normal; d: hint)           one per id
 //   weld-layers    layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz           -n (n points towards the torch)        one per pass
+//   frames         x_mm,y_mm,z_mm,qw,qx,qy,qz [,segment,kind]     the quaternion's z (frames as given)   per segment
 //
 // The job is told by the header. The tube-joint path file (normals, no tool) is refused, naming the cut and weld files.
 
@@ -18,8 +19,8 @@
 
 namespace conform {
 
-// "tube-joint", "saddle", "sicp", "profile", "weld-layers". Throws conform::Error naming the file and the columns a
-// path file needs when the header matches none.
+// "tube-joint", "saddle", "sicp", "profile", "weld-layers", "frames" (frame columns, e.g. export's own csv). Throws
+// conform::Error naming the file and the columns a path file needs when the header matches none.
 std::string detect_path_job(const CsvTable& table);
 
 // The table's tool frames, in the file's frame. Throws conform::Error naming the file, line and column of a missing,
