@@ -29,8 +29,8 @@ struct ProgramOptions {
   std::string tool;                   // tool name (format's default when empty: tool0, TOOL_DATA[1], UT 1, tTool)
   std::string work_object;            // work object / base (wobj0, BASE_DATA[1], UF 1, fPart)
   // Controller limit: most motion points per file; a longer program is split into parts called from the main file
-  // (krl, rapid, fanuc, val3). 0: the format's default (krl 2000, rapid 2000, fanuc 1000, val3 5000); never split
-  // for urscript, gcode, csv.
+  // (krl, rapid, fanuc). 0: the format's default (krl 2000, rapid 2000, fanuc 1000); never split for val3 (one
+  // point array), urscript, gcode, csv.
   std::size_t max_points = 0;
   bool five_axis = true;  // gcode: TRAORI with tool vectors; false: 3-axis positions only
   std::string source;     // written into the header comment (the input file)
