@@ -267,6 +267,20 @@ TEST(RobotAngles, GimbalLockKeepsTheFirstAngleAndComposesExactly) {
             kAxisTol);
 }
 
+TEST(RobotAngles, StableApproachingGimbalLock) {
+  // B -> 90 deg with A = 30, C = 10: the angles stay put (the matrix still defines them down to cos B ~ 1e-12, and
+  // at the lock A is held), and compose to the frame within 1e-9 rad all the way.
+  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
+  for (int k = 0; k <= 14; ++k) {
+    const double delta = k == 14 ? 0.0 : std::pow(10.0, -k);
+    const Eigen::Matrix3d r = Rz(rad(30)) * Ry(kPi / 2 - delta) * Rx(rad(10));
+    abc = euler_zyx_deg(r, k == 0 ? nullptr : &abc);
+    EXPECT_NEAR(abc(0), 30.0, 1e-2) << delta;
+    EXPECT_NEAR(abc(2), 10.0, 1e-2) << delta;
+    EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol) << delta;
+  }
+}
+
 TEST(RobotAngles, RotationVectorNearPiStaysOnOneSide) {
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
   for (int i = 0; i <= 10; ++i) {
