@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "conform/core/error.h"
@@ -17,6 +18,8 @@ namespace conform::app {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
+// A larger turn between two consecutive frames is a wrist flip or a corner turned on the spot: warned about.
+constexpr double kLargeStepDeg = 30.0;
 
 class ExportCommand : public Command {
  public:
@@ -93,6 +96,12 @@ class ExportCommand : public Command {
   void report(const ExportJobResult& r) const {
     const ToolFrameFigures& f = r.figures;
     const double max_step_deg = f.max_orientation_step_rad / kPi * 180.0;
+    std::vector<std::string> warnings;
+    if (max_step_deg > kLargeStepDeg) {
+      warnings.push_back("the tool turns by " + std::to_string(max_step_deg) +
+                         " deg between two consecutive frames (frame " + std::to_string(f.max_step_index) +
+                         "): check for a wrist flip (--roll-cone-deg)");
+    }
     if (json_) {
       print_json({{"job", r.job},
                   {"format", format_},
@@ -106,6 +115,7 @@ class ExportCommand : public Command {
                   {"repeated_points", f.repeated_points},
                   {"roll_limited", f.roll_limited},
                   {"T_base_part", to_json(r.T_base_part)},
+                  {"warnings", warnings},
                   {"written", r.written}});
     } else {
       std::printf("path          %s file, %zu segments, %zu frames\n", r.job.c_str(), r.segments, r.frames);
@@ -117,12 +127,7 @@ class ExportCommand : public Command {
                   f.parallel_tangents, f.repeated_points, f.roll_limited);
       for (const std::string& w : r.written) std::printf("wrote         %s\n", w.c_str());
     }
-    if (max_step_deg > 30.0) {
-      warn("export: warning: the tool turns by " + std::to_string(max_step_deg) +
-           " deg between two consecutive "
-           "frames (frame " +
-           std::to_string(f.max_step_index) + "): check for a wrist flip (--roll-cone-deg)");
-    }
+    for (const std::string& w : warnings) warn("export: " + w);
   }
 
   std::string path_;

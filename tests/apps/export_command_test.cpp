@@ -185,6 +185,17 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   }
 }
 
+TEST_F(ExportCommand, ALargeTurnBetweenFramesIsWarnedAbout) {
+  test::write_bytes(dir.file("flip.csv"), "x_mm,y_mm,z_mm,nx,ny,nz\n0,0,0,0,0,1\n1,0,0,0,1,0\n");
+  const auto r =
+      conform({"export", "--path", dir.file("flip.csv"), "--format", "csv", "--out", dir.file("f.csv"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(json["max_orientation_step_deg"].get<double>(), 90.0, 1e-9);
+  ASSERT_EQ(json["warnings"].size(), 1u);
+  EXPECT_NE(r.err.find("wrist flip"), std::string::npos) << r.err;
+}
+
 TEST_F(ExportCommand, BadInputExitsTwoNamingTheFileAndWritesNothing) {
   test::write_bytes(dir.file("nocols.csv"), "x_mm,y_mm,z_mm\n0,0,0\n");
   test::write_bytes(dir.file("nan.csv"), "x_mm,y_mm,z_mm,nx,ny,nz\n0,0,0,0,0,1\n1,0,nan,0,0,1\n");
