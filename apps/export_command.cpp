@@ -1,0 +1,151 @@
+// `conform export`: a job's path CSV as a robot or CNC program, with full tool frames (docs/export.md;
+// toolpath/job_paths.h, tool_frames.h, robot_program.h).
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "conform/core/error.h"
+#include "conform/pipelines/export.h"
+#include "json_values.h"
+#include "number_list.h"
+#include "terminal.h"
+
+namespace conform::app {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+// A larger turn between two consecutive frames is a wrist flip or a corner turned on the spot: warned about.
+constexpr double kLargeStepDeg = 30.0;
+
+class ExportCommand : public Command {
+ public:
+  void configure(CLI::App& c) override {
+    c.add_option("--path", path_,
+                 "Path CSV of a job: tube-joint cut or weld, saddle, sicp trajectory, profile cut, weld-layers; "
+                 "required")
+        ->required();
+    c.add_option("--format", format_, "Program format")
+        ->required()
+        ->check(CLI::IsMember({"krl", "rapid", "urscript", "fanuc", "val3", "gcode", "csv"}));
+    c.add_option("--out", out_,
+                 "Program file to write (main file; parts and a .dtx beside it); its stem names the program "
+                 "unless --name; required")
+        ->required();
+    c.add_option("--frame", frame_path_,
+                 "T_base_part: 4x4 text transform placing the part in the robot base; "
+                 "none: identity");
+    c.add_option("--speed-mm-s", options_.speed_mm_s, "Speed along the path, mm/s");
+    c.add_option("--approach-speed-mm-s", options_.approach_speed_mm_s, "Speed of approach and retract moves, mm/s");
+    c.add_option("--approach-mm", options_.approach_mm,
+                 "Approach and retract distance back along the tool axis (-z), mm; 0: none");
+    c.add_option("--name", name_,
+                 "Program name (letters, digits, _; starts with a letter); empty: --out's "
+                 "stem");
+    c.add_option("--tool", options_.tool,
+                 "Tool name (rapid tool0, krl TOOL_DATA[1], fanuc UT number 1, val3 tTool when empty)");
+    c.add_option("--work-object", options_.work_object,
+                 "Work object / base (rapid wobj0, krl BASE_DATA[1], fanuc UF number 1, val3 fPart when empty)");
+    c.add_option("--max-points", options_.max_points,
+                 "Most motion points per file before the program is split into parts (krl, rapid, fanuc); 0: the "
+                 "format's limit (krl 2000, rapid 2000, fanuc 1000)");
+    c.add_flag("--three-axis", three_axis_, "gcode: positions only (G1 X Y Z), no TRAORI tool vectors");
+    c.add_option("--roll-cone-deg", roll_cone_deg_,
+                 "Keep the tool x axis within this angle of --preferred-x (turning about z) to avoid wrist flips, "
+                 "deg; 0: off");
+    c.add_option("--preferred-x", preferred_x_, "Preferred tool x direction in the part frame, x,y,z");
+    c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
+  }
+
+  void declare_files(OutputSet& files) override {
+    files.add_inputs({path_, frame_path_});
+    files.add_output(out_);
+  }
+
+  int run() override {
+    ExportJobOptions o;
+    o.path_csv = path_;
+    o.format = format_;
+    o.out_path = out_;
+    o.frame_path = frame_path_;
+    o.frames.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
+    o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    o.program = options_;
+    o.program.name = name_;
+    o.program.five_axis = !three_axis_;
+    std::string why;
+    ProgramOptions named = o.program;
+    named.name = name_.empty() ? std::filesystem::path(out_).stem().string() : name_;
+    if (!named.IsValid(&why) && name_.empty()) {
+      throw Error("export: " + why + " (the name is --out's stem; give --name)");
+    }
+    const ExportJobResult result = run_export(o);
+    report(result);
+    return 0;
+  }
+
+ private:
+  Eigen::Vector3d parse_vector(const std::string& text, const char* option) const {
+    const std::vector<double> v = parse_numbers(text, 3, option, "x,y,z");
+    return {v[0], v[1], v[2]};
+  }
+
+  void report(const ExportJobResult& r) const {
+    const ToolFrameFigures& f = r.figures;
+    const double max_step_deg = f.max_orientation_step_rad / kPi * 180.0;
+    std::vector<std::string> warnings;
+    if (max_step_deg > kLargeStepDeg) {
+      warnings.push_back("the tool turns by " + std::to_string(max_step_deg) +
+                         " deg between two consecutive frames (frame " + std::to_string(f.max_step_index) +
+                         "): check for a wrist flip (--roll-cone-deg)");
+    }
+    if (json_) {
+      print_json({{"job", r.job},
+                  {"format", format_},
+                  {"segments", r.segments},
+                  {"frames", r.frames},
+                  {"targets", r.targets},
+                  {"parts", r.parts},
+                  {"max_orientation_step_deg", max_step_deg},
+                  {"max_orientation_step_frame", f.max_step_index},
+                  {"parallel_tangents", f.parallel_tangents},
+                  {"repeated_points", f.repeated_points},
+                  {"roll_limited", f.roll_limited},
+                  {"T_base_part", to_json(r.T_base_part)},
+                  {"warnings", warnings},
+                  {"written", r.written}});
+    } else {
+      std::printf("path          %s file, %zu segments, %zu frames\n", r.job.c_str(), r.segments, r.frames);
+      std::printf("program       %s, %zu motion points (approach %g mm), %zu part%s\n", format_.c_str(), r.targets,
+                  options_.approach_mm, r.parts, r.parts == 1 ? "" : "s");
+      std::printf("orientation   largest change between consecutive frames %.4f deg (frame %zu)\n", max_step_deg,
+                  f.max_step_index);
+      std::printf("degenerate    %zu tangents along the tool axis, %zu repeated points, %zu rolls limited\n",
+                  f.parallel_tangents, f.repeated_points, f.roll_limited);
+      for (const std::string& w : r.written) std::printf("wrote         %s\n", w.c_str());
+    }
+    for (const std::string& w : warnings) warn("export: " + w);
+  }
+
+  std::string path_;
+  std::string format_;
+  std::string out_;
+  std::string frame_path_;
+  ProgramOptions options_;
+  std::string name_;
+  bool three_axis_ = false;
+  double roll_cone_deg_ = 0.0;
+  std::string preferred_x_ = "1,0,0";
+  bool json_ = false;
+};
+
+}  // namespace
+
+CONFORM_COMMAND(ExportCommand, "export",
+                "A job's path CSV as a robot or CNC program (KRL, RAPID, URScript, FANUC, VAL3, G-code) with tool "
+                "frames")
+
+}  // namespace conform::app

@@ -1,0 +1,363 @@
+// The program writers (toolpath/robot_program.h) and their angle conventions (robot_angles.h): known frames written
+// in every format and parsed back here by a parser that rebuilds the rotation from the vendors' definitions, written
+// out below by hand (not by calling the writer's conversions). Positions to 1e-6 mm, axes to 1e-9 rad.
+
+#include <cmath>
+#include <random>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "conform/core/error.h"
+#include "conform/toolpath/robot_angles.h"
+#include "conform/toolpath/robot_program.h"
+
+namespace conform {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+constexpr double kPositionTol = 1e-6;  // mm
+constexpr double kAxisTol = 1e-9;      // rad
+
+double rad(double deg) { return deg * kPi / 180.0; }
+
+// Elementary rotations, written out (right-handed, active).
+Eigen::Matrix3d Rx(double a) {
+  Eigen::Matrix3d m;
+  m << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+  return m;
+}
+Eigen::Matrix3d Ry(double a) {
+  Eigen::Matrix3d m;
+  m << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+  return m;
+}
+Eigen::Matrix3d Rz(double a) {
+  Eigen::Matrix3d m;
+  m << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
+  return m;
+}
+
+// Unit quaternion (w, x, y, z) -> matrix (ABB's orient, w = q1).
+Eigen::Matrix3d from_quaternion(double w, double x, double y, double z) {
+  Eigen::Matrix3d m;
+  m << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
+      2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
+      2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
+  return m;
+}
+
+// Rodrigues: rotation vector (UR) -> matrix.
+Eigen::Matrix3d from_rotation_vector(const Eigen::Vector3d& v) {
+  const double a = v.norm();
+  if (a == 0.0) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d k = v / a;
+  Eigen::Matrix3d K;
+  K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
+  return Eigen::Matrix3d::Identity() + std::sin(a) * K + (1 - std::cos(a)) * K * K;
+}
+
+double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Eigen::AngleAxisd d(a.transpose() * b);
+  return std::abs(d.angle());
+}
+
+struct Parsed {
+  Eigen::Vector3d position;
+  Eigen::Matrix3d rotation;  // for gcode only the z column is meaningful
+};
+
+std::vector<double> numbers(const std::smatch& m) {
+  std::vector<double> out;
+  for (std::size_t i = 1; i < m.size(); ++i) out.push_back(std::stod(m[i].str()));
+  return out;
+}
+
+std::vector<std::vector<double>> all_matches(const std::string& text, const std::string& pattern) {
+  std::vector<std::vector<double>> out;
+  const std::regex re(pattern);
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+    out.push_back(numbers(*it));
+  }
+  return out;
+}
+
+const std::string N = "(-?[0-9]+\\.?[0-9]*(?:[eE][-+]?[0-9]+)?)";
+
+// Per format: the motion points of the program text, in order.
+std::vector<Parsed> parse(const std::string& format, const std::string& text) {
+  std::vector<Parsed> out;
+  if (format == "krl") {
+    for (const auto& v :
+         all_matches(text, "LIN \\{X " + N + ", Y " + N + ", Z " + N + ", A " + N + ", B " + N + ", C " + N + "\\}")) {
+      out.push_back({{v[0], v[1], v[2]}, Rz(rad(v[3])) * Ry(rad(v[4])) * Rx(rad(v[5]))});
+    }
+  } else if (format == "rapid") {
+    for (const auto& v : all_matches(text, "robtarget p[0-9]+ := \\[\\[" + N + "," + N + "," + N + "\\],\\[" + N + "," +
+                                               N + "," + N + "," + N + "\\]")) {
+      out.push_back({{v[0], v[1], v[2]}, from_quaternion(v[3], v[4], v[5], v[6])});
+    }
+  } else if (format == "urscript") {
+    for (const auto& v :
+         all_matches(text, "movel\\(p\\[" + N + ", " + N + ", " + N + ", " + N + ", " + N + ", " + N + "\\]")) {
+      out.push_back({Eigen::Vector3d(v[0], v[1], v[2]) * 1000.0, from_rotation_vector({v[3], v[4], v[5]})});
+    }
+  } else if (format == "fanuc") {
+    for (const auto& v : all_matches(text, "X = " + N + "  mm,\tY = " + N + "  mm,\tZ = " + N + "  mm,\n\tW = " + N +
+                                               " deg,\tP = " + N + " deg,\tR = " + N + " deg")) {
+      // W, P, R: about the fixed x, then y, then z: R = Rz(R) Ry(P) Rx(W).
+      out.push_back({{v[0], v[1], v[2]}, Rz(rad(v[5])) * Ry(rad(v[4])) * Rx(rad(v[3]))});
+    }
+  } else if (format == "val3") {
+    for (const auto& v : all_matches(text, "x=\"" + N + "\" y=\"" + N + "\" z=\"" + N + "\" rx=\"" + N + "\" ry=\"" +
+                                               N + "\" rz=\"" + N + "\"")) {
+      out.push_back({{v[0], v[1], v[2]}, Rx(rad(v[3])) * Ry(rad(v[4])) * Rz(rad(v[5]))});
+    }
+  } else if (format == "gcode") {
+    for (const auto& v : all_matches(text, "G1 X" + N + " Y" + N + " Z" + N + " A3=" + N + " B3=" + N + " C3=" + N)) {
+      Eigen::Matrix3d r = Eigen::Matrix3d::Zero();
+      r.col(2) = -Eigen::Vector3d(v[3], v[4], v[5]);  // the tool vector points from the tip to the holder
+      out.push_back({{v[0], v[1], v[2]}, r});
+    }
+  } else if (format == "csv") {
+    for (const auto& v : all_matches(text, "\n[0-9]+,[0-9]+,[a-z]+," + N + "," + N + "," + N + "," + N + "," + N + "," +
+                                               N + "," + N + "," + N + "," + N + "," + N)) {
+      const Eigen::Matrix3d q = from_quaternion(v[3], v[4], v[5], v[6]);
+      const Eigen::Matrix3d abc = Rz(rad(v[7])) * Ry(rad(v[8])) * Rx(rad(v[9]));
+      EXPECT_LT(angle_between(q, abc), kAxisTol);
+      out.push_back({{v[0], v[1], v[2]}, q});
+    }
+  }
+  return out;
+}
+
+// The test's frames: identity, 90 deg about each axis, gimbal lock (B = +-90 deg with A and C both non-zero), and
+// random frames from a seeded generator; positions spread over a robot's reach.
+std::vector<ToolFrame> known_frames() {
+  std::vector<Eigen::Matrix3d> rotations = {Eigen::Matrix3d::Identity(),
+                                            Rx(kPi / 2),
+                                            Ry(kPi / 2),
+                                            Rz(kPi / 2),
+                                            Rx(-kPi / 2),
+                                            Rz(kPi),
+                                            Rz(rad(30)) * Ry(kPi / 2) * Rx(rad(10)),
+                                            Rz(rad(-40)) * Ry(-kPi / 2) * Rx(rad(25)),
+                                            Rz(rad(30)) * Ry(kPi / 2 - 1e-9) * Rx(rad(10))};
+  std::mt19937 rng(19);
+  std::normal_distribution<double> gauss;
+  for (int i = 0; i < 20; ++i) {
+    Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+    rotations.push_back(q.normalized().toRotationMatrix());
+  }
+  std::vector<ToolFrame> frames;
+  std::uniform_real_distribution<double> reach(-1500.0, 1500.0);
+  for (const Eigen::Matrix3d& r : rotations) {
+    ToolFrame f;
+    f.rotation = r;
+    f.position = Eigen::Vector3d(reach(rng), reach(rng), reach(rng));
+    frames.push_back(f);
+  }
+  return frames;
+}
+
+ToolPath path_of(const std::vector<ToolFrame>& frames) {
+  ToolPath path;
+  path.job = "test";
+  path.segments.push_back({"s", frames});
+  return path;
+}
+
+ProgramOptions no_approach() {
+  ProgramOptions o;
+  o.approach_mm = 0.0;
+  o.name = "t";
+  return o;
+}
+
+std::string all_text(const Program& p) {
+  std::string text;
+  for (const ProgramFile& f : p.files) text += f.text;
+  return text;
+}
+
+TEST(RobotProgram, EveryFormatWritesKnownFramesThatParseBack) {
+  const std::vector<ToolFrame> frames = known_frames();
+  for (const std::string& format : program_formats()) {
+    SCOPED_TRACE(format);
+    const Program program = write_program(path_of(frames), format, no_approach());
+    const std::vector<Parsed> parsed = parse(format, all_text(program));
+    ASSERT_EQ(parsed.size(), frames.size());
+    double worst_position = 0, worst_axis = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      worst_position = std::max(worst_position, (parsed[i].position - frames[i].position).norm());
+      // gcode gives the tool axis only: the angle between the axes (atan2 of sine and cosine, exact near 0).
+      const Eigen::Vector3d z = parsed[i].rotation.col(2), z_true = frames[i].rotation.col(2);
+      const double axis = format == "gcode" ? std::atan2(z.cross(z_true).norm(), z.dot(z_true))
+                                            : angle_between(parsed[i].rotation, frames[i].rotation);
+      worst_axis = std::max(worst_axis, axis);
+    }
+    EXPECT_LT(worst_position, kPositionTol);
+    EXPECT_LT(worst_axis, kAxisTol);
+    std::printf("[ measured ] %-8s position %.2e mm, orientation %.2e rad\n", format.c_str(), worst_position,
+                worst_axis);
+  }
+}
+
+TEST(RobotProgram, TheFrameOptionPlacesThePathInTheBase) {
+  // T_base_part: 90 deg about z and a shift; the identity frame at (100, 0, 0) lands at (10, 120, 30) turned by Rz.
+  ProgramOptions o = no_approach();
+  o.T_base_part = Eigen::Translation3d(10, 20, 30) * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ());
+  ToolFrame f;
+  f.position = {100, 0, 0};
+  const auto parsed = parse("krl", all_text(write_program(path_of({f}), "krl", o)));
+  ASSERT_EQ(parsed.size(), 1u);
+  EXPECT_LT((parsed[0].position - Eigen::Vector3d(10, 120, 30)).norm(), kPositionTol);
+  EXPECT_LT(angle_between(parsed[0].rotation, Rz(kPi / 2)), kAxisTol);
+}
+
+TEST(RobotProgram, ApproachAndRetractAlongMinusZ) {
+  ProgramOptions o = no_approach();
+  o.approach_mm = 25;
+  ToolFrame f;
+  f.rotation = Ry(kPi / 2);  // z = +x of the base
+  f.position = {0, 0, 0};
+  std::vector<ToolFrame> frames = {f, f};
+  frames[1].position = {0, 10, 0};
+  const std::vector<RobotTarget> t = plan_targets(path_of(frames), o);
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0].kind, MoveKind::kApproach);
+  EXPECT_LT((t[0].position_mm - Eigen::Vector3d(-25, 0, 0)).norm(), 1e-12);
+  EXPECT_EQ(t[3].kind, MoveKind::kRetract);
+  EXPECT_LT((t[3].position_mm - Eigen::Vector3d(-25, 10, 0)).norm(), 1e-12);
+}
+
+TEST(RobotAngles, EulerAnglesAreContinuousThroughPlusMinus180) {
+  // A turn about z from 170 to 190 deg and back: A goes on past 180 instead of jumping to -170.
+  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
+  Eigen::Vector4d q = Eigen::Vector4d::Zero();
+  for (int i = 0; i <= 40; ++i) {
+    const double a = rad(170.0 + (i <= 20 ? i : 40 - i));
+    const Eigen::Matrix3d r = Rz(a) * Rx(rad(179.5 + 0.05 * i));
+    const Eigen::Vector3d before = abc;
+    const Eigen::Vector4d q_before = q;
+    abc = euler_zyx_deg(r, i == 0 ? nullptr : &abc);
+    q = quaternion_wxyz(r, i == 0 ? nullptr : &q);
+    if (i > 0) {
+      EXPECT_LT((abc - before).cwiseAbs().maxCoeff(), 1.5) << i;
+      EXPECT_LT((q - q_before).norm(), 0.02) << i;
+    }
+    EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol);
+  }
+}
+
+TEST(RobotAngles, GimbalLockKeepsTheFirstAngleAndComposesExactly) {
+  const Eigen::Matrix3d r = Rz(rad(30)) * Ry(kPi / 2) * Rx(rad(10));
+  const Eigen::Vector3d abc = euler_zyx_deg(r, nullptr);
+  EXPECT_NEAR(abc(0), 0.0, 1e-9);
+  EXPECT_NEAR(abc(1), 90.0, 1e-6);
+  EXPECT_NEAR(abc(2), -20.0, 1e-9);  // only C - A is defined at B = 90
+  const Eigen::Vector3d prev(30, 89, 10);
+  const Eigen::Vector3d kept = euler_zyx_deg(r, &prev);
+  EXPECT_NEAR(kept(0), 30.0, 1e-9);
+  EXPECT_NEAR(kept(2), 10.0, 1e-9);
+  const Eigen::Vector3d xyz = euler_xyz_deg(Rx(rad(15)) * Ry(-kPi / 2) * Rz(rad(5)), nullptr);
+  EXPECT_LT(angle_between(Rx(rad(xyz(0))) * Ry(rad(xyz(1))) * Rz(rad(xyz(2))), Rx(rad(15)) * Ry(-kPi / 2) * Rz(rad(5))),
+            kAxisTol);
+}
+
+TEST(RobotAngles, StableApproachingGimbalLock) {
+  // B -> 90 deg with A = 30, C = 10: the angles stay put (the matrix still defines them down to cos B ~ 1e-12, and
+  // at the lock A is held), and compose to the frame within 1e-9 rad all the way.
+  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
+  for (int k = 0; k <= 14; ++k) {
+    const double delta = k == 14 ? 0.0 : std::pow(10.0, -k);
+    const Eigen::Matrix3d r = Rz(rad(30)) * Ry(kPi / 2 - delta) * Rx(rad(10));
+    abc = euler_zyx_deg(r, k == 0 ? nullptr : &abc);
+    EXPECT_NEAR(abc(0), 30.0, 1e-2) << delta;
+    EXPECT_NEAR(abc(2), 10.0, 1e-2) << delta;
+    EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol) << delta;
+  }
+}
+
+TEST(RobotAngles, RotationVectorNearPiStaysOnOneSide) {
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int i = 0; i <= 10; ++i) {
+    const double a = kPi - 0.01 + 0.002 * i;  // passes through pi
+    const Eigen::Matrix3d r = from_rotation_vector(a * Eigen::Vector3d(0, 0.6, 0.8));
+    const Eigen::Vector3d before = v;
+    v = rotation_vector(r, i == 0 ? nullptr : &v);
+    if (i > 0) {
+      EXPECT_LT((v - before).norm(), 0.01) << i;
+    }
+    EXPECT_LT(angle_between(from_rotation_vector(v), r), kAxisTol);
+  }
+}
+
+TEST(RobotProgram, LongProgramsAreSplitIntoPartsWithTheSameMoves) {
+  std::vector<ToolFrame> frames = known_frames();
+  for (const std::string format : {"krl", "rapid", "fanuc"}) {
+    SCOPED_TRACE(format);
+    ProgramOptions o = no_approach();
+    const Program whole = write_program(path_of(frames), format, o);
+    o.max_points = 8;
+    const Program split = write_program(path_of(frames), format, o);
+    const std::size_t parts = (frames.size() + 7) / 8;
+    EXPECT_EQ(whole.parts, 1u);
+    EXPECT_EQ(split.parts, parts);
+    ASSERT_EQ(split.files.size(), parts + 1);
+    EXPECT_EQ(split.files[1].name, "t_1" + program_extension(format));
+    const auto a = parse(format, all_text(whole));
+    const auto b = parse(format, all_text(split));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].position, b[i].position);
+      EXPECT_EQ(a[i].rotation, b[i].rotation);
+    }
+    for (std::size_t k = 1; k <= parts; ++k) {
+      EXPECT_LE(parse(format, split.files[k].text).size(), 8u);
+      const std::string call = (format == "fanuc" ? "CALL T_" : "t_") + std::to_string(k);
+      EXPECT_NE(split.files[0].text.find(call), std::string::npos) << call;
+    }
+  }
+}
+
+TEST(RobotProgram, SameInputSameBytesAndBadOptionsRefused) {
+  const std::vector<ToolFrame> frames = known_frames();
+  for (const std::string& format : program_formats()) {
+    EXPECT_EQ(all_text(write_program(path_of(frames), format, {})),
+              all_text(write_program(path_of(frames), format, {})));
+  }
+  ProgramOptions o;
+  o.name = "9lives";
+  EXPECT_THROW(write_program(path_of(frames), "krl", o), Error);
+  o = {};
+  o.tool = "t;\nbad";
+  EXPECT_THROW(write_program(path_of(frames), "rapid", o), Error);
+  o = {};
+  o.T_base_part.linear() *= 2.0;
+  EXPECT_THROW(write_program(path_of(frames), "krl", o), Error);
+  o = {};
+  o.speed_mm_s = std::nan("");
+  EXPECT_THROW(write_program(path_of(frames), "krl", o), Error);
+  EXPECT_THROW(write_program(path_of(frames), "abb", {}), Error);
+  o = {};
+  o.tool = "tool7";
+  EXPECT_THROW(write_program(path_of(frames), "fanuc", o), Error);  // UT is a number
+}
+
+TEST(RobotProgram, AFileNameCannotEndAComment) {
+  ProgramOptions o = no_approach();
+  o.source = "a--b;c)\nLIN {X 1}<!--";
+  const std::vector<ToolFrame> frames = known_frames();
+  const Program val3 = write_program(path_of(frames), "val3", o);
+  const std::string& dtx = val3.files[1].text;
+  EXPECT_EQ(dtx.find("--", dtx.find("<!--") + 4), dtx.find("-->"));  // the comment's only "--" is its end
+  const std::string krl = all_text(write_program(path_of(frames), "krl", o));
+  EXPECT_EQ(parse("krl", krl).size(), frames.size());  // no extra LIN from the name
+  EXPECT_EQ(krl.find("b;c"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace conform

@@ -1,0 +1,31 @@
+// Universal Robots URScript (.script): movel(p[x, y, z, rx, ry, rz], a, v) with positions in metres and the rotation
+// vector (axis times angle, rad) of the tool frame in the base frame (URScript manual, "pose").
+
+#include <string>
+
+#include "conform/toolpath/robot_angles.h"
+#include "program_writers.h"
+
+namespace conform::detail {
+
+Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOptions& options) {
+  std::string text = "def " + options.name + "():\n  # " + provenance(options, targets.size()) +
+                     "\n  # poses p[x, y, z, rx, ry, rz]: metres and a rotation vector in radians\n";
+  if (!options.tool.empty()) text += "  # tool: " + options.tool + " (set the TCP in the installation)\n";
+  if (!options.work_object.empty()) text += "  # work object: " + options.work_object + "\n";
+  Eigen::Vector3d rv = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const RobotTarget& t = targets[i];
+    rv = rotation_vector(t.rotation, i == 0 ? nullptr : &rv);
+    const double v = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) / 1000.0;
+    const Eigen::Vector3d p = t.position_mm / 1000.0;
+    text += "  movel(p[" + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " + num(p.z(), 9) + ", " + num(rv.x(), 12) + ", " +
+            num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) + ")\n";
+  }
+  text += "end\n";
+  Program program;
+  program.files.push_back({options.name + ".script", text});
+  return program;
+}
+
+}  // namespace conform::detail
