@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <pcl/features/fpfh_omp.h>
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/registration/sample_consensus_prerejective.h>
 #include <pcl/search/kdtree.h>
 
@@ -82,6 +83,33 @@ Described strided(const Described& all, std::size_t count) {
   return out;
 }
 
+// The scan points whose feature match passes the filters: mutual (the reference feature nearest to the scan's has
+// that scan feature as its own nearest) and the ratio test (nearest over second-nearest feature distance below
+// `ratio`, Lowe 2004). All of them when fewer than `minimum` pass (the filters are a help, not a condition).
+Described matched(const Described& s, const Described& r, bool mutual, double ratio, std::size_t minimum) {
+  if (!mutual && ratio <= 0.0) return s;
+  pcl::KdTreeFLANN<pcl::FPFHSignature33> in_reference, in_scan;
+  in_reference.setInputCloud(r.features);
+  if (mutual) in_scan.setInputCloud(s.features);
+  Described out;
+  std::vector<int> index(2), back(1);
+  std::vector<float> distance(2), back_distance(1);
+  for (std::size_t i = 0; i < s.points->size(); ++i) {
+    const pcl::FPFHSignature33& f = (*s.features)[i];
+    if (!std::isfinite(f.histogram[0])) continue;
+    if (in_reference.nearestKSearch(f, 2, index, distance) < 2) continue;
+    if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
+    if (mutual && (in_scan.nearestKSearch((*r.features)[static_cast<std::size_t>(index[0])], 1, back,
+                                          back_distance) < 1 ||
+                   back[0] != static_cast<int>(i))) {
+      continue;
+    }
+    out.points->push_back((*s.points)[i]);
+    out.features->push_back(f);
+  }
+  return out.points->size() >= minimum ? out : s;
+}
+
 // From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
 // holds a point and the feature radius (5 voxels) holds enough neighbours for a histogram on a sparse scan.
 double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference) {
@@ -138,6 +166,10 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "max_iterations must be >= 1";
   } else if (correspondence_randomness < 1) {
     why = "correspondence_randomness must be >= 1";
+  } else if (!(ratio >= 0.0 && ratio <= 1.0)) {
+    why = "ratio must be in [0, 1] (0: no ratio test)";
+  } else if (min_matched_points < 3) {
+    why = "min_matched_points must be >= 3";
   } else if (!(similarity >= 0.0 && similarity < 1.0)) {
     why = "similarity must be in [0, 1)";
   }
@@ -161,7 +193,9 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   result.scan_points = s.points->size();
   result.reference_points = r.points->size();
 
-  const Described sample = strided(s, options.ransac_points);
+  const Described sample =
+      strided(matched(s, r, options.mutual, options.ratio, options.min_matched_points), options.ransac_points);
+  result.matched_points = sample.points->size();
   for (int run = 0; run < options.runs; ++run) {
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(run);
     FpfhHypothesis h = ransac_once(sample, r, options, seed, v);

@@ -30,6 +30,11 @@ struct FpfhOptions {
   std::size_t ransac_points = 400;
   int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
   double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
+  // Match filters on the scan points RANSAC draws from: mutual nearest features, and the ratio test (nearest over
+  // second-nearest feature distance below `ratio`; 0: none). Ignored when fewer than min_matched_points pass.
+  bool mutual = false;
+  double ratio = 0.0;
+  std::size_t min_matched_points = 50;
   std::uint64_t seed = 1;
   // RANSAC runs over the same descriptors, seeded seed, seed + 1, ...: each run's answer is a hypothesis of its own
   // (hypotheses), so that one unlucky run (a mirror pose on a near-symmetric part) meets competition.
@@ -52,6 +57,7 @@ struct FpfhResult {
   double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance
   double voxel_mm = 0.0;         // used
   std::size_t scan_points = 0;   // after downsampling
+  std::size_t matched_points = 0;  // RANSAC drew from (after the match filters and ransac_points)
   std::size_t reference_points = 0;
 };
 
