@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <pcl/features/fpfh_omp.h>
+#include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/registration/sample_consensus_prerejective.h>
 #include <pcl/search/kdtree.h>
@@ -38,9 +39,33 @@ struct Described {
 };
 
 // Downsampled points, relative to `origin` so that float keeps their precision, with their FPFH descriptors.
+// The points whose mean distance to their `k` nearest neighbours is within `sigmas` standard deviations of the mean
+// over all points (PCL's StatisticalOutlierRemoval): stray returns off the surface, each alone in its voxel, would
+// otherwise be as many downsampled points as the surface has and scramble its normals and histograms.
+std::vector<Eigen::Vector3d> without_outliers(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin,
+                                              int k, double sigmas) {
+  if (k <= 0 || input.size() <= static_cast<std::size_t>(k)) return input;
+  Points::Ptr cloud(new Points);
+  for (const Eigen::Vector3d& p : input) {
+    const Eigen::Vector3f q = (p - origin).cast<float>();
+    cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
+  }
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud(cloud);
+  filter.setMeanK(k);
+  filter.setStddevMulThresh(sigmas);
+  pcl::Indices kept;
+  filter.filter(kept);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(kept.size());
+  for (const auto i : kept) out.push_back(input[static_cast<std::size_t>(i)]);
+  return out;
+}
+
 Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin, double voxel_mm,
-                   double radius_mm, const char* what) {
-  const std::vector<Eigen::Vector3d> down = voxel_downsample(input, voxel_mm);
+                   double radius_mm, const FpfhOptions& options, const char* what) {
+  const std::vector<Eigen::Vector3d> down =
+      voxel_downsample(without_outliers(input, origin, options.outlier_neighbours, options.outlier_sigmas), voxel_mm);
   if (down.size() < kMinPoints) {
     throw Error(std::string("FPFH: the ") + what + " has " + std::to_string(down.size()) + " points after " +
                 std::to_string(voxel_mm) + " mm voxels; at least " + std::to_string(kMinPoints) +
@@ -168,6 +193,8 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "correspondence_randomness must be >= 1";
   } else if (!(ratio >= 0.0 && ratio <= 1.0)) {
     why = "ratio must be in [0, 1] (0: no ratio test)";
+  } else if (outlier_neighbours < 0 || !(outlier_sigmas > 0.0) || !std::isfinite(outlier_sigmas)) {
+    why = "outlier_neighbours must be >= 0 (0: no outlier removal) and outlier_sigmas finite and > 0";
   } else if (min_matched_points < 3) {
     why = "min_matched_points must be >= 3";
   } else if (!(similarity >= 0.0 && similarity < 1.0)) {
@@ -188,8 +215,8 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
-  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, "scan");
-  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, "reference");
+  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
+  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
   result.scan_points = s.points->size();
   result.reference_points = r.points->size();
 

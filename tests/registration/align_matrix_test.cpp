@@ -1,8 +1,10 @@
 // The realistic-variation matrix of global registration (`conform align --init fpfh`, issue 13): ten seeds of each
 // case, any rotation, each run end to end (files in, verdict out). A case passes when no seed gives a wrong pose
 // that is trusted (verdict "yes" or "check", exit 0): every seed is right within the stated bounds, or refused
-// (verdict "no", exit 1). Each also states how many seeds it must get right (the measured figure, a seed or two
-// below it), so that a change that refuses everything fails too.
+// (verdict "no", exit 1). Right: within 1 degree and 1 mm at the scan's centroid (the question here is the global
+// one, the right basin; fine accuracy is measured elsewhere). Each also states for how many seeds the coarse step
+// must end in the right basin (the measured figure, a seed or two below it), so that a change that breaks the
+// coarse step fails even when fine ICP's verdict refuses the result.
 //   - a machined workpiece (datasets/workpiece.h) against its golden-sample scan: partial scans of 30-80 % of its
 //     length, ~0.2 mm noise, another frame (issue 13's 169-degree case, generated);
 //   - the same with the reference 100 m from the origin (shop-frame coordinates);
@@ -141,7 +143,7 @@ TEST(AlignMatrixWorkpiece, PartialScans) {
       "workpiece", [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.2, 0.0); },
       within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.right, 7);
+  EXPECT_GE(t.start_right, 9);  // measured 10
 }
 
 // The golden sample in shop coordinates: 100 m from the origin, turned; the scan in the scanner's frame.
@@ -152,7 +154,7 @@ TEST(AlignMatrixWorkpiece, ShopFrameCoordinates) {
   const Tally t = run_matrix(
       "shop frame", [&](int seed) { return workpiece_trial(seed, T_shop_part, 0.2, 0.0); }, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.right, 7);
+  EXPECT_GE(t.start_right, 9);  // measured 10
 }
 
 TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
@@ -160,7 +162,7 @@ TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
       "noise and outliers",
       [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); }, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.right, 6);
+  EXPECT_GE(t.start_right, 6);  // measured 8 (1 without the outlier removal before FPFH)
 }
 
 // A coarse profiler pitch: steep walls (0.3 mm run) under points ~2 mm apart, so that the walls, the only thing
@@ -177,7 +179,7 @@ TEST(AlignMatrixWorkpiece, SparseWalls) {
   };
   const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.right, 5);
+  EXPECT_GE(t.start_right, 4);  // measured 6
 }
 
 // Random points on a cylinder's side (axis z, centred), radius r, length l, over `arc` radians, with radial noise.

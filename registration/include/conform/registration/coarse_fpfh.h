@@ -30,6 +30,10 @@ struct FpfhOptions {
   std::size_t ransac_points = 400;
   int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
   double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
+  // Before downsampling, points whose mean distance to their outlier_neighbours nearest is more than outlier_sigmas
+  // standard deviations above the mean are dropped (stray returns); 0 neighbours: none dropped.
+  int outlier_neighbours = 16;
+  double outlier_sigmas = 2.0;
   // Match filters on the scan points RANSAC draws from: mutual nearest features, and the ratio test (nearest over
   // second-nearest feature distance below `ratio`; 0: none). Ignored when fewer than min_matched_points pass.
   bool mutual = false;
