@@ -1,5 +1,6 @@
 #pragma once
-// Coarse alignment from local shape: both clouds voxel-downsampled, PCA normals (turned away from each cloud's
+// Coarse alignment from local shape: both clouds cleared of stray points (statistical outlier removal) and
+// voxel-downsampled, PCA normals (turned away from each cloud's
 // centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), and RANSAC over feature
 // matches with pre-rejection of inconsistent samples (Buch et al. 2013, PCL's SampleConsensusPrerejective).
 // Unlike PCA it works for partial overlap, as long as the overlap has distinctive shape.
