@@ -8,6 +8,7 @@
 
 #include <cstdio>
 
+#include "conform/core/error.h"
 #include "conform/registration/coarse.h"
 #include "boss_plate.h"
 #include "test_parts.h"
@@ -117,6 +118,26 @@ TEST(CoarseHypotheses, FpfhRunsAreSeededHypotheses) {
   }
   EXPECT_TRUE(a.found);
   EXPECT_LT(test::rotation_error_deg(a.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);  // scan and part coincide
+}
+
+// The match filters (mutual nearest features, the ratio test) thin the points RANSAC draws from and keep the pose;
+// the outlier removal drops stray points before the voxels. Measured in align_matrix_test.cpp: the filters do not
+// help (off by default), the outlier removal does.
+TEST(CoarseHypotheses, FpfhMatchFiltersKeepThePose) {
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  FpfhOptions options;
+  options.runs = 2;
+  const FpfhResult plain = fpfh_ransac(part.scan, part.reference.vertices, options);
+  options.mutual = true;
+  options.ratio = 0.9;
+  options.min_matched_points = 3;
+  const FpfhResult filtered = fpfh_ransac(part.scan, part.reference.vertices, options);
+  EXPECT_LT(filtered.matched_points, plain.matched_points);
+  EXPECT_GE(filtered.matched_points, 3u);
+  EXPECT_TRUE(filtered.found);
+  EXPECT_LT(test::rotation_error_deg(filtered.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);
+  options.ratio = 1.5;
+  EXPECT_THROW(fpfh_ransac(part.scan, part.reference.vertices, options), Error);
 }
 
 // "Fpfh" in the names: sanitizer runs can leave PCL's feature objects out with --gtest_filter=-*Fpfh* (see
