@@ -135,7 +135,8 @@ TEST(CoarseHypotheses, FpfhMatchFiltersKeepThePose) {
   EXPECT_LT(filtered.matched_points, plain.matched_points);
   EXPECT_GE(filtered.matched_points, 3u);
   EXPECT_TRUE(filtered.found);
-  EXPECT_LT(test::rotation_error_deg(filtered.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);
+  // RANSAC's own pose, a voxel (6 mm here) or so from the truth before any ICP: within a few degrees.
+  EXPECT_LT(test::rotation_error_deg(filtered.T_ref_scan, Eigen::Isometry3d::Identity()), 5.0);
   options.ratio = 1.5;
   EXPECT_THROW(fpfh_ransac(part.scan, part.reference.vertices, options), Error);
 }
