@@ -216,6 +216,9 @@ class AlignCommand : public Command {
                         {"inlier_fraction", s.inlier_fraction},
                         {"inlier_share", s.inlier_share},
                         {"rms_mm", s.rms_mm},
+                        {"best_only_share", s.best_only_share},
+                        {"only_share", s.only_share},
+                        {"separated", s.separated},
                         {"T_ref_scan", pose}});
     }
     const DegeneracyReport& c = icp.degeneracy;

@@ -63,6 +63,17 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mes
   }
   if (ranking.best >= 0 && result.coarse.inlier_distance_mm > 0.0) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    for (const StartReport& other : ranking.starts) {
+      if (!other.separated) continue;
+      char told[200];
+      std::snprintf(told, sizeof told,
+                    "' fits almost as well at a pose %.1f deg away (inlier share %.3f against %.3f); only %.1f%% of "
+                    "the scan (against %.1f%%) tells them apart",
+                    rotation_angle(other.T_probe * best.T_probe.inverse()) * 180.0 / M_PI, other.inlier_share,
+                    best.inlier_share, 100.0 * other.best_only_share, 100.0 * other.only_share);
+      check.push_back("coarse start '" + other.label + told);
+      break;
+    }
     if (best.inlier_share < kLowCoarseShare * options.overlap) {
       no.push_back(format("the best coarse start has only %.0f%% of the scan within %.3g mm of the reference "
                           "(expected overlap %.0f%%)",

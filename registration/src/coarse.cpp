@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/registration/downsample.h"
 #include "conform/registration/surface_noise.h"
 
 namespace conform {
@@ -28,6 +29,8 @@ bool CoarseOptions::IsValid(std::string* error) const {
   } else if (!(inlier_noise_factor >= 0.0) || !std::isfinite(inlier_noise_factor) || !(inlier_floor_share >= 0.0) ||
              !std::isfinite(inlier_floor_share)) {
     why = "inlier_noise_factor and inlier_floor_share must be finite and >= 0";
+  } else if (refine_iterations < 0 || refine_points < 10) {
+    why = "refine_iterations must be >= 0 and refine_points >= 10";
   } else if (method == CoarseMethod::kFpfh && !fpfh.IsValid(&why)) {
     why = "fpfh: " + why;
   } else if (method != CoarseMethod::kNone && !multi_start.IsValid(&why)) {
@@ -75,6 +78,20 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
   const StartReport& best = result.ranking.starts[static_cast<std::size_t>(result.ranking.best)];
   result.T_ref_scan = best.T_probe;
   result.winner = best.label;
+  if (options.refine_iterations > 0) {
+    // The probe stopped after a few steps on a subset: finish the winner on more of the scan, holding only what the
+    // data cannot fix at all, so that a motion the fine fit holds (weakly fixed, e.g. along walls a height field
+    // barely samples) is held at the data's estimate, not at the probe's.
+    report(options.progress, "coarse: refine", 0.0);
+    IcpOptions refine = multi_start.probe;
+    refine.max_iterations = options.refine_iterations;
+    refine.free_tolerance_mm = 1e6;
+    refine.free_tolerance_rad = 1e6;
+    refine.progress = nullptr;
+    const IcpResult r = icp(stride_downsample(scan, options.refine_points), reference, best.T_probe, refine);
+    if (r.inlier_fraction >= best.inlier_fraction) result.T_ref_scan = r.T_ref_scan;
+    report(options.progress, "coarse: refine", 1.0);
+  }
   return result;
 }
 

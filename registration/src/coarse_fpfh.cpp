@@ -11,6 +11,8 @@
 #include <utility>
 
 #include <pcl/features/fpfh_omp.h>
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/registration/sample_consensus_prerejective.h>
 #include <pcl/search/kdtree.h>
 
@@ -37,9 +39,33 @@ struct Described {
 };
 
 // Downsampled points, relative to `origin` so that float keeps their precision, with their FPFH descriptors.
+// The points whose mean distance to their `k` nearest neighbours is within `sigmas` standard deviations of the mean
+// over all points (PCL's StatisticalOutlierRemoval): stray returns off the surface, each alone in its voxel, would
+// otherwise be as many downsampled points as the surface has and scramble its normals and histograms.
+std::vector<Eigen::Vector3d> without_outliers(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin,
+                                              int k, double sigmas) {
+  if (k <= 0 || input.size() <= static_cast<std::size_t>(k)) return input;
+  Points::Ptr cloud(new Points);
+  for (const Eigen::Vector3d& p : input) {
+    const Eigen::Vector3f q = (p - origin).cast<float>();
+    cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
+  }
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud(cloud);
+  filter.setMeanK(k);
+  filter.setStddevMulThresh(sigmas);
+  pcl::Indices kept;
+  filter.filter(kept);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(kept.size());
+  for (const auto i : kept) out.push_back(input[static_cast<std::size_t>(i)]);
+  return out;
+}
+
 Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin, double voxel_mm,
-                   double radius_mm, const char* what) {
-  const std::vector<Eigen::Vector3d> down = voxel_downsample(input, voxel_mm);
+                   double radius_mm, const FpfhOptions& options, const char* what) {
+  const std::vector<Eigen::Vector3d> down =
+      voxel_downsample(without_outliers(input, origin, options.outlier_neighbours, options.outlier_sigmas), voxel_mm);
   if (down.size() < kMinPoints) {
     throw Error(std::string("FPFH: the ") + what + " has " + std::to_string(down.size()) + " points after " +
                 std::to_string(voxel_mm) + " mm voxels; at least " + std::to_string(kMinPoints) +
@@ -80,6 +106,33 @@ Described strided(const Described& all, std::size_t count) {
     out.features->push_back((*all.features)[k * n / count]);
   }
   return out;
+}
+
+// The scan points whose feature match passes the filters: mutual (the reference feature nearest to the scan's has
+// that scan feature as its own nearest) and the ratio test (nearest over second-nearest feature distance below
+// `ratio`, Lowe 2004). All of them when fewer than `minimum` pass (the filters are a help, not a condition).
+Described matched(const Described& s, const Described& r, bool mutual, double ratio, std::size_t minimum) {
+  if (!mutual && ratio <= 0.0) return s;
+  pcl::KdTreeFLANN<pcl::FPFHSignature33> in_reference, in_scan;
+  in_reference.setInputCloud(r.features);
+  if (mutual) in_scan.setInputCloud(s.features);
+  Described out;
+  std::vector<int> index(2), back(1);
+  std::vector<float> distance(2), back_distance(1);
+  for (std::size_t i = 0; i < s.points->size(); ++i) {
+    const pcl::FPFHSignature33& f = (*s.features)[i];
+    if (!std::isfinite(f.histogram[0])) continue;
+    if (in_reference.nearestKSearch(f, 2, index, distance) < 2) continue;
+    if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
+    if (mutual && (in_scan.nearestKSearch((*r.features)[static_cast<std::size_t>(index[0])], 1, back,
+                                          back_distance) < 1 ||
+                   back[0] != static_cast<int>(i))) {
+      continue;
+    }
+    out.points->push_back((*s.points)[i]);
+    out.features->push_back(f);
+  }
+  return out.points->size() >= minimum ? out : s;
 }
 
 // From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
@@ -138,6 +191,12 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "max_iterations must be >= 1";
   } else if (correspondence_randomness < 1) {
     why = "correspondence_randomness must be >= 1";
+  } else if (!(ratio >= 0.0 && ratio <= 1.0)) {
+    why = "ratio must be in [0, 1] (0: no ratio test)";
+  } else if (outlier_neighbours < 0 || !(outlier_sigmas > 0.0) || !std::isfinite(outlier_sigmas)) {
+    why = "outlier_neighbours must be >= 0 (0: no outlier removal) and outlier_sigmas finite and > 0";
+  } else if (min_matched_points < 3) {
+    why = "min_matched_points must be >= 3";
   } else if (!(similarity >= 0.0 && similarity < 1.0)) {
     why = "similarity must be in [0, 1)";
   }
@@ -156,12 +215,14 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
-  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, "scan");
-  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, "reference");
+  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
+  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
   result.scan_points = s.points->size();
   result.reference_points = r.points->size();
 
-  const Described sample = strided(s, options.ransac_points);
+  const Described sample =
+      strided(matched(s, r, options.mutual, options.ratio, options.min_matched_points), options.ransac_points);
+  result.matched_points = sample.points->size();
   for (int run = 0; run < options.runs; ++run) {
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(run);
     FpfhHypothesis h = ransac_once(sample, r, options, seed, v);

@@ -29,23 +29,37 @@ double truncated_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Is
   return std::sqrt(sum / static_cast<double>(points.size()));
 }
 
-// Share of the points within `tolerance` of the reference plane at their nearest reference point, that point no
-// farther than `reach` (a mesh's vertices are sparse: the plane distance is the one that measures the fit).
-double inlier_share(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
-                    const IcpReference& reference, double tolerance, double reach) {
-  std::size_t inside = 0;
+// Which points lie within `tolerance` of the reference plane at their nearest reference point, that point no farther
+// than `reach` (a mesh's vertices are sparse: the plane distance is the one that measures the fit).
+std::vector<char> inliers(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
+                          const IcpReference& reference, double tolerance, double reach) {
+  std::vector<char> inside(points.size(), 0);
   const bool has_normals = reference.normals().size() == reference.points().size();
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = T * p;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d q = T * points[i];
     const Eigen::Vector3f qf = q.cast<float>();
     if (!qf.allFinite()) continue;
     const int j = reference.tree().nearest(qf);
     if (j < 0) continue;
     const Eigen::Vector3d d = q - reference.points()[static_cast<std::size_t>(j)];
     const double along = has_normals ? std::abs(d.dot(reference.normals()[static_cast<std::size_t>(j)])) : d.norm();
-    inside += along <= tolerance && d.norm() <= reach;
+    inside[i] = along <= tolerance && d.norm() <= reach;
   }
-  return static_cast<double>(inside) / static_cast<double>(points.size());
+  return inside;
+}
+
+double share_of(const std::vector<char>& mask) {
+  return static_cast<double>(std::count(mask.begin(), mask.end(), 1)) / static_cast<double>(mask.size());
+}
+
+// Whether the best start's inliers outnumber the other's where they disagree, beyond chance: at two poses of a
+// symmetric surface the points in only one pose's inlier set are threshold noise, equally likely either way
+// (binomial, p = 1/2); a real difference (a boss that only one pose puts on the reference) is one-sided.
+bool separated(std::size_t best_only, std::size_t other_only, std::size_t n, const MultiStartOptions& o) {
+  if (o.separation_z <= 0.0) return false;
+  const double b = static_cast<double>(best_only), a = static_cast<double>(other_only);
+  return b >= o.separation_min_share * static_cast<double>(n) && b >= o.separation_ratio * a &&
+         b - a > o.separation_z * std::sqrt(a + b);
 }
 
 // Higher share first, then lower truncated RMS.
@@ -76,6 +90,9 @@ bool MultiStartOptions::IsValid(std::string* error) const {
     why = "inlier_distance_mm must be finite and >= 0 (0: score by truncated RMS)";
   } else if (!(share_margin >= 0.0 && share_margin < 1.0)) {
     why = "share_margin must be in [0, 1)";
+  } else if (!(separation_z >= 0.0) || !std::isfinite(separation_z) || !(separation_ratio >= 1.0) ||
+             !std::isfinite(separation_ratio) || !(separation_min_share >= 0.0 && separation_min_share <= 1.0)) {
+    why = "separation_z must be finite and >= 0, separation_ratio finite and >= 1, separation_min_share in [0, 1]";
   } else if (!(distinct_deg > 0.0) || !std::isfinite(distinct_deg) || !(distinct_mm >= 0.0) ||
              !std::isfinite(distinct_mm)) {
     why = "distinct_deg must be finite and > 0, distinct_mm finite and >= 0";
@@ -96,6 +113,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   const double reach =
       by_share ? 3.0 * median_spacing(reference.points(), reference.tree()) + options.inlier_distance_mm : 0.0;
   MultiStartResult result;
+  std::vector<std::vector<char>> masks;
   for (const CoarseStart& start : starts) {
     IcpOptions probe = options.probe;
     probe.progress = nullptr;
@@ -107,13 +125,16 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     report.score_mm = truncated_rms(subset, r.T_ref_scan, reference, cap);
     report.inlier_fraction = r.inlier_fraction;
     report.rms_mm = r.rms_mm;
-    if (by_share) report.inlier_share = inlier_share(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach);
+    if (by_share) {
+      masks.push_back(inliers(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
+      report.inlier_share = share_of(masks.back());
+    }
     result.starts.push_back(report);
     if (result.best < 0 || better(report, result.starts[static_cast<std::size_t>(result.best)])) {
       result.best = static_cast<int>(result.starts.size()) - 1;
     }
   }
-  const StartReport& best = result.starts[static_cast<std::size_t>(result.best)];
+  const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
   const Eigen::Vector3d centre =
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
       static_cast<double>(subset.size());
@@ -123,7 +144,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
                                                     : std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
   const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;
   for (std::size_t j = 0; j < result.starts.size(); ++j) {
-    const StartReport& other = result.starts[j];
+    StartReport& other = result.starts[j];
     if (static_cast<int>(j) == result.best) continue;
     const bool close = by_share ? other.inlier_share >= (1.0 - options.share_margin) * best.inlier_share
                                 : other.score_mm <= (1.0 + options.ambiguity) * best.score_mm;
@@ -131,8 +152,20 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     const Eigen::Isometry3d between = other.T_probe * best.T_probe.inverse();
     const bool elsewhere =
         rotation_angle(between) > far_rad || (other.T_probe * centre - best.T_probe * centre).norm() > far_mm;
-    if (elsewhere &&
-        (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)]))) {
+    if (!elsewhere) continue;
+    if (by_share) {
+      const std::vector<char>& b = masks[static_cast<std::size_t>(result.best)];
+      std::size_t best_only = 0, other_only = 0;
+      for (std::size_t i = 0; i < subset.size(); ++i) {
+        best_only += b[i] && !masks[j][i];
+        other_only += masks[j][i] && !b[i];
+      }
+      other.best_only_share = static_cast<double>(best_only) / static_cast<double>(subset.size());
+      other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
+      other.separated = separated(best_only, other_only, subset.size(), options);
+      if (other.separated) continue;
+    }
+    if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
       result.ambiguous = true;
       result.runner_up = static_cast<int>(j);
     }

@@ -8,48 +8,14 @@
 
 #include <cstdio>
 
+#include "conform/core/error.h"
 #include "conform/registration/coarse.h"
+#include "boss_plate.h"
 #include "test_parts.h"
 
 namespace conform {
 namespace {
 
-
-// A 120 x 80 x 10 mm plate (grid points on its six faces, `step` apart, shifted by `offset` within the grid) with a
-// boss of radius 6 mm and height 5 mm on its top face near one corner: the only thing that breaks its symmetry.
-std::vector<Eigen::Vector3d> boss_plate(double step, double offset) {
-  const Eigen::Vector3d size(120, 80, 10);
-  const Eigen::Vector2d boss(40, 22);
-  const double boss_r = 6.0, boss_h = 5.0;
-  std::vector<Eigen::Vector3d> out;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    for (double side : {-0.5, 0.5}) {
-      for (double s = -0.5 * size(u) + offset; s <= 0.5 * size(u); s += step) {
-        for (double t = -0.5 * size(v) + offset; t <= 0.5 * size(v); t += step) {
-          Eigen::Vector3d p;
-          p(axis) = side * size(axis);
-          p(u) = s;
-          p(v) = t;
-          if (axis == 2 && side > 0 && (p.head<2>() - boss).norm() < boss_r) continue;  // under the boss
-          out.push_back(p);
-        }
-      }
-    }
-  }
-  const double top = 0.5 * size.z();
-  for (double a = offset / boss_r; a < 2.0 * M_PI; a += step / boss_r) {
-    for (double z = top + offset; z <= top + boss_h; z += step) {
-      out.emplace_back(boss.x() + boss_r * std::cos(a), boss.y() + boss_r * std::sin(a), z);
-    }
-  }
-  for (double x = -boss_r + offset; x <= boss_r; x += step) {
-    for (double y = -boss_r + offset; y <= boss_r; y += step) {
-      if (x * x + y * y <= boss_r * boss_r) out.emplace_back(boss.x() + x, boss.y() + y, top + boss_h);
-    }
-  }
-  return out;
-}
 
 std::vector<Eigen::Vector3d> with_noise(std::vector<Eigen::Vector3d> points, double sigma, Random& random) {
   for (Eigen::Vector3d& p : points) p += sigma * Eigen::Vector3d(random.normal(), random.normal(), random.normal());
@@ -77,14 +43,14 @@ struct Tally {
 // The boss plate under `seeds` random motions (any rotation): right, refused, or (the failure) wrong and accepted.
 Tally boss_plate_trials(int seeds) {
   Mesh reference_mesh;
-  reference_mesh.vertices = boss_plate(1.5, 0.0);
+  reference_mesh.vertices = test::boss_plate(1.5, 0.0);
   const IcpReference reference(reference_mesh);
   Tally tally;
   for (int seed = 1; seed <= seeds; ++seed) {
     Random random(static_cast<std::uint64_t>(100 + seed));
     const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 50.0, Eigen::Vector3d::Zero());
     const std::vector<Eigen::Vector3d> scan =
-        test::transformed_points(with_noise(boss_plate(1.2, 0.4), 0.02, random), truth.inverse());
+        test::transformed_points(with_noise(test::boss_plate(1.2, 0.4), 0.02, random), truth.inverse());
     const CoarseResult c = coarse_align(scan, reference, fpfh_options(145.0, static_cast<std::uint64_t>(seed)));
     const bool right = test::rotation_error_deg(c.T_ref_scan, truth) < 1.0;
     const bool ok = accepted(c, 1.0);
@@ -152,6 +118,27 @@ TEST(CoarseHypotheses, FpfhRunsAreSeededHypotheses) {
   }
   EXPECT_TRUE(a.found);
   EXPECT_LT(test::rotation_error_deg(a.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);  // scan and part coincide
+}
+
+// The match filters (mutual nearest features, the ratio test) thin the points RANSAC draws from and keep the pose;
+// the outlier removal drops stray points before the voxels. Measured in align_matrix_test.cpp: the filters do not
+// help (off by default), the outlier removal does.
+TEST(CoarseHypotheses, FpfhMatchFiltersKeepThePose) {
+  const test::TestPart part = test::make_test_part(test::PartKind::kBox);
+  FpfhOptions options;
+  options.runs = 2;
+  const FpfhResult plain = fpfh_ransac(part.scan, part.reference.vertices, options);
+  options.mutual = true;
+  options.ratio = 0.9;
+  options.min_matched_points = 3;
+  const FpfhResult filtered = fpfh_ransac(part.scan, part.reference.vertices, options);
+  EXPECT_LT(filtered.matched_points, plain.matched_points);
+  EXPECT_GE(filtered.matched_points, 3u);
+  EXPECT_TRUE(filtered.found);
+  // RANSAC's own pose, a voxel (6 mm here) or so from the truth before any ICP: within a few degrees.
+  EXPECT_LT(test::rotation_error_deg(filtered.T_ref_scan, Eigen::Isometry3d::Identity()), 5.0);
+  options.ratio = 1.5;
+  EXPECT_THROW(fpfh_ransac(part.scan, part.reference.vertices, options), Error);
 }
 
 // "Fpfh" in the names: sanitizer runs can leave PCL's feature objects out with --gtest_filter=-*Fpfh* (see

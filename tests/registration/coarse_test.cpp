@@ -113,6 +113,55 @@ TEST(MultiStart, InlierShareRanksAndFlagsTheMirror) {
               r.starts[static_cast<std::size_t>(r.best)].inlier_share, 0.01);
 }
 
+// A 120 x 80 mm plate (1 mm grid at phase `offset`) with cosine bumps 5 mm high, radius 6 mm, at `bumps`.
+std::vector<Eigen::Vector3d> bumped_plate(const std::vector<Eigen::Vector2d>& bumps, double offset) {
+  std::vector<Eigen::Vector3d> out;
+  for (double x = -60.0 + offset; x <= 60.0; x += 1.0) {
+    for (double y = -40.0 + offset; y <= 40.0; y += 1.0) {
+      double z = 0.0;
+      for (const Eigen::Vector2d& b : bumps) {
+        const double d = (Eigen::Vector2d(x, y) - b).norm();
+        if (d < 6.0) z += 2.5 * (1.0 + std::cos(M_PI * d / 6.0));
+      }
+      out.emplace_back(x, y, z);
+    }
+  }
+  return out;
+}
+
+// Two starts, the truth and the truth turned 180 degrees about the plate's normal: with one bump the turn fits all
+// but the bump's ~2 % (close within the 10 % margin), and only one side has inliers of its own: told apart. With
+// two bumps the turn is a symmetry: as many inliers either way, ambiguous.
+TEST(MultiStart, ACloseStartIsToldApartOnlyByAOneSidedDifference) {
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 10.0;
+  options.inlier_distance_mm = 0.1;
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const std::vector<CoarseStart> starts = {{"right", Eigen::Isometry3d::Identity()}, {"turned", turn}};
+  for (const bool symmetric : {false, true}) {
+    std::vector<Eigen::Vector2d> bumps = {{40.0, 22.0}};
+    if (symmetric) bumps.emplace_back(-40.0, -22.0);
+    Mesh reference_mesh;
+    reference_mesh.vertices = bumped_plate(bumps, 0.0);
+    const IcpReference reference(reference_mesh);
+    const MultiStartResult r = rank_starts(bumped_plate(bumps, 0.5), reference, starts, options);
+    ASSERT_GE(r.best, 0);
+    const StartReport& other = r.starts[static_cast<std::size_t>(1 - r.best)];
+    EXPECT_GT(other.inlier_share, 0.9 * r.starts[static_cast<std::size_t>(r.best)].inlier_share) << symmetric;
+    if (symmetric) {
+      EXPECT_TRUE(r.ambiguous);
+      EXPECT_FALSE(other.separated);
+    } else {
+      EXPECT_EQ(r.best, 0);
+      EXPECT_FALSE(r.ambiguous);
+      EXPECT_TRUE(other.separated);
+      EXPECT_GT(other.best_only_share, 0.005);
+      EXPECT_LT(other.only_share, 0.25 * other.best_only_share);
+    }
+  }
+}
+
 TEST(Downsample, MedianSpacingOfAGrid) {
   const std::vector<Eigen::Vector3d> grid = box_surface({120, 80, 40}, 2.5);
   EXPECT_NEAR(median_spacing(grid, KdTree(grid)), 2.5, 1e-5);  // float tree: 1e-5 mm

@@ -31,13 +31,17 @@ struct CoarseOptions {
   // is set; inlier_noise_factor 0: by truncated RMS only.
   double inlier_noise_factor = 3.0;
   double inlier_floor_share = 1e-3;
-  ProgressFn progress;            // stages "coarse: fpfh", "coarse: starts"
+  // The winner's probe pose refined further (at most refine_iterations steps of the probe's ICP on at most
+  // refine_points scan points, holding only what the data cannot fix at all); 0: the probe's pose as it is.
+  int refine_iterations = 30;
+  std::size_t refine_points = 20000;
+  ProgressFn progress;            // stages "coarse: fpfh", "coarse: starts", "coarse: refine"
 
   bool IsValid(std::string* error) const;
 };
 
 struct CoarseResult {
-  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // the winning start after its short ICP
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // the winning start after its ICP (and refinement)
   MultiStartResult ranking;                                      // empty for kNone
   bool fpfh_used = false;
   FpfhResult fpfh;     // when fpfh_used

@@ -1,5 +1,6 @@
 #pragma once
-// Coarse alignment from local shape: both clouds voxel-downsampled, PCA normals (turned away from each cloud's
+// Coarse alignment from local shape: both clouds cleared of stray points (statistical outlier removal) and
+// voxel-downsampled, PCA normals (turned away from each cloud's
 // centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), and RANSAC over feature
 // matches with pre-rejection of inconsistent samples (Buch et al. 2013, PCL's SampleConsensusPrerejective).
 // Unlike PCA it works for partial overlap, as long as the overlap has distinctive shape.
@@ -30,6 +31,15 @@ struct FpfhOptions {
   std::size_t ransac_points = 400;
   int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
   double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
+  // Before downsampling, points whose mean distance to their outlier_neighbours nearest is more than outlier_sigmas
+  // standard deviations above the mean are dropped (stray returns); 0 neighbours: none dropped.
+  int outlier_neighbours = 16;
+  double outlier_sigmas = 2.0;
+  // Match filters on the scan points RANSAC draws from: mutual nearest features, and the ratio test (nearest over
+  // second-nearest feature distance below `ratio`; 0: none). Ignored when fewer than min_matched_points pass.
+  bool mutual = false;
+  double ratio = 0.0;
+  std::size_t min_matched_points = 50;
   std::uint64_t seed = 1;
   // RANSAC runs over the same descriptors, seeded seed, seed + 1, ...: each run's answer is a hypothesis of its own
   // (hypotheses), so that one unlucky run (a mirror pose on a near-symmetric part) meets competition.
@@ -52,6 +62,7 @@ struct FpfhResult {
   double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance
   double voxel_mm = 0.0;         // used
   std::size_t scan_points = 0;   // after downsampling
+  std::size_t matched_points = 0;  // RANSAC drew from (after the match filters and ransac_points)
   std::size_t reference_points = 0;
 };
 

@@ -17,7 +17,7 @@ struct MultiStartOptions {
   IcpOptions probe;                 // the short ICP from each start (its max_iterations: keep small, e.g. 15)
   std::size_t probe_points = 3000;  // scan points the probes use, evenly strided (all when fewer)
   // Another start whose score is within this fraction of the best, ending more than 2 degrees or 1% of the scan's
-  // size away from the best, makes the result ambiguous.
+  // size away from the best, makes the result ambiguous (with inlier scoring: unless separated, below).
   double ambiguity = 0.2;
   // Scoring by inlier share (used when > 0, e.g. 3 times the scan's noise): the share of the probe points within
   // this distance of the reference plane at their nearest reference point (and within a few point spacings of that
@@ -28,6 +28,14 @@ struct MultiStartOptions {
   double share_margin = 0.1;
   double distinct_deg = 3.0;
   double distinct_mm = 0.0;  // 0: 10 times inlier_distance_mm, at least 1% of the scan's size
+  // With inlier scoring, such a close start is still told apart (not ambiguous) when the points that are inliers at
+  // the best's pose only outnumber those at its own pose only beyond chance: at least separation_min_share of the
+  // probe points, separation_ratio times as many, and more by separation_z standard deviations of a fair coin
+  // (sqrt of their sum). At two poses of a symmetric surface those points are threshold noise, as many either way;
+  // a small feature that only one pose fits (a boss) is one-sided. separation_z 0: never told apart.
+  double separation_z = 4.0;
+  double separation_ratio = 4.0;
+  double separation_min_share = 0.005;
 
   MultiStartOptions() { probe.max_iterations = 15; }
   bool IsValid(std::string* error) const;
@@ -41,6 +49,11 @@ struct StartReport {
   double inlier_fraction = 0.0;
   double inlier_share = 0.0;  // of the probe points, within inlier_distance_mm (0 when not scored so)
   double rms_mm = 0.0;        // the probe ICP's RMS at T_probe
+  // For a start close in share to the best but elsewhere (inlier scoring): the share of the probe points that are
+  // inliers at the best's pose only, and at this start's only; separated: the difference is beyond chance.
+  double best_only_share = 0.0;
+  double only_share = 0.0;
+  bool separated = false;
 };
 
 struct MultiStartResult {
