@@ -1,0 +1,130 @@
+"""conform's Python jobs against the CLI's --json on the same inputs (1e-9), and the binding's own promises."""
+
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import conform
+from conftest import cli, cli_json
+
+
+def assert_same(python, cli_values, tol=1e-9):
+    """Every key of the CLI's JSON, with the same value (numbers to tol relative)."""
+    assert set(python) == set(cli_values)
+    for key, expected in cli_values.items():
+        got = python[key]
+        if isinstance(expected, float) and isinstance(got, float):
+            assert got == pytest.approx(expected, rel=tol, abs=tol), key
+        elif isinstance(expected, list):
+            np.testing.assert_allclose(np.asarray(got, dtype=float), np.asarray(expected, dtype=float), rtol=tol,
+                                       atol=tol, err_msg=key)
+        else:
+            assert got == expected, key
+
+
+def test_compare_matches_cli(tubes):
+    expected = cli_json("compare", "--scan", tubes["scan"], "--reference", tubes["nominal"], "--tolerance", 0.3,
+                        "--transform", tubes["transform"])
+    r = conform.compare(str(tubes["scan"]), tubes["nominal"], tolerance=0.3, transform=tubes["transform"])
+    assert_same(r.to_dict(), expected)
+    assert r.T_ref_scan.shape == (4, 4)
+    assert r.deviation_mm.shape == (r.points,) and r.closest_mm.shape == (r.points, 3)
+    assert np.count_nonzero(~np.isnan(r.deviation_mm)) == r.matched
+    assert np.sqrt(np.nanmean(r.deviation_mm**2)) == pytest.approx(r.rms_mm, rel=1e-12)
+
+
+def test_compare_in_memory_inputs_give_the_file_numbers(tubes):
+    by_path = conform.compare(tubes["scan"], tubes["nominal"], transform=tubes["transform"]).to_dict()
+    scan, nominal = conform.read(tubes["scan"]), conform.read(tubes["nominal"])
+    transform = np.loadtxt(tubes["transform"])
+    for s, ref, t in [(scan, nominal, transform), (scan.points, (nominal.points, nominal.faces), transform)]:
+        d = conform.compare(s, ref, transform=t).to_dict()
+        assert d["scan"] is None and d["reference"] is None and d["transform"] is None
+        for key in ("rms_mm", "mean_mm", "p95_abs_mm", "matched", "T_ref_scan", "reference_faces"):
+            assert d[key] == by_path[key], key
+
+
+def test_read_gives_views(tubes):
+    g = conform.read(tubes["nominal"])
+    assert g.points.shape == (len(g), 3) and g.faces.shape[1] == 3 and g.faces.dtype == np.int32
+    assert not g.points.flags.owndata and g.points.base is not None
+    assert g.normals.shape in ((0, 3), (len(g), 3))
+    radius = np.hypot(g.points[:, 0], g.points[:, 1])
+    np.testing.assert_allclose(radius, 50.0, atol=0.01)  # the generated tube's nominal radius
+
+
+def test_fit_cylinder_matches_cli(tubes):
+    expected = cli_json("fit-cylinder", "--input", tubes["scan"], "--seed", 2)
+    r = conform.fit_cylinder(tubes["scan"], seed=2)
+    assert_same(r.to_dict(), expected)
+    assert r.ok and r.radius_mm == pytest.approx(50.0, abs=0.1)
+    assert r.inlier.dtype == bool and np.count_nonzero(r.inlier) == r.inliers
+
+
+def test_saddle_matches_cli(tmp_path):
+    expected = cli_json("saddle", "--R", 100, "--r", 40, "--right-angle-pose-deg", 45, "--step-deg", 5)
+    r = conform.saddle(R=100, r=40, right_angle_pose_deg=45, step_deg=5)
+    assert_same(r.to_dict(), expected)
+    assert r.position_mm.shape == (r.points, 3) and r.theta_rad[-1] == pytest.approx(2 * math.pi)
+    expected = cli_json("saddle", "--R", 100, "--r", 60, "--pitch-deg", 60, "--offset", 10,
+                        "--right-angle-pose-deg", 30, "--speed", 10, "--period", 0.04)
+    assert_same(conform.saddle(R=100, r=60, pitch_deg=60, offset=10, right_angle_pose_deg=30, speed=10,
+                               period=0.04).to_dict(), expected)
+
+
+def test_pose_error_matches_cli(tubes, tmp_path):
+    identity = tmp_path / "I.txt"
+    identity.write_text("1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n")
+    expected = cli_json("pose-error", "--transform", tubes["transform"], "--transform", identity, "--units", "m")
+    r = conform.pose_error(tubes["transform"], np.eye(4), units="m")
+    d = r.to_dict()
+    assert d["transform_b"] is None
+    d["transform_b"] = str(identity)
+    assert_same(d, expected)
+    assert r.translation_mm == pytest.approx(1000 * math.sqrt(0.1**2 + 0.2**2 + 0.05**2), rel=1e-12)
+
+
+def test_errors_carry_the_cli_message(tubes, tmp_path):
+    missing = tmp_path / "missing.ply"
+    code, _, stderr = cli("compare", "--scan", missing, "--reference", tubes["nominal"], check=False)
+    assert code == 2
+    with pytest.raises(conform.Error) as e:
+        conform.compare(missing, tubes["nominal"])
+    assert stderr.strip().splitlines()[-1] == f"conform: error: {e.value}"
+    with pytest.raises(conform.Error, match=r"\(N, 3\) array"):
+        conform.compare(np.zeros((5, 2)), tubes["nominal"])
+    with pytest.raises(conform.Error, match="tolerance"):
+        conform.compare(tubes["scan"], tubes["nominal"], tolerance=-1.0)
+
+
+def test_progress_and_gil(tubes):
+    stages = []
+    conform.compare(tubes["scan"], tubes["nominal"], progress=lambda stage, f: stages.append((stage, f)))
+    assert ("deviation", 1.0) in stages and stages[0] == ("read scan", 0.0)
+
+    # A Python thread keeps running while a job computes: the GIL is released (no progress callback here, which
+    # would take it back).
+    ticks, stop = [0], threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            ticks[0] += 1
+
+    thread = threading.Thread(target=spin)
+    thread.start()
+    try:
+        before = ticks[0]
+        conform.fit_cylinder(tubes["scan"], seed=1)
+        during = ticks[0] - before
+    finally:
+        stop.set()
+        thread.join()
+    assert during > 1000
+
+    def fail(stage, fraction):
+        raise KeyboardInterrupt("stop")
+
+    with pytest.raises(KeyboardInterrupt):
+        conform.compare(tubes["scan"], tubes["nominal"], progress=fail)
