@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "JOBS"]
 
 
 class Result:
@@ -77,5 +77,11 @@ def saddle(**options):
     return _result("saddle", _conform.saddle(**options))
 
 
+def weld_layers(eroded, **options):
+    """`conform weld-layers`: crater rims and weld paths layer by layer. Arrays (the CSV's rows): layer, path,
+    points_mm (M, 3), normals (M, 3)."""
+    return _result("weld_layers", _conform.weld_layers(eroded, **options))
+
+
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle}
+JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers}

@@ -22,6 +22,7 @@
 #include "conform/pipelines/fit_cylinder_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
+#include "conform/pipelines/weld_layers_json.h"
 #include "inputs.h"
 
 namespace conform::python {
@@ -201,6 +202,56 @@ py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pit
   return answer(j, arrays);
 }
 
+py::tuple job_weld_layers(const py::object& eroded, const py::object& reference, bool reference_from_border,
+                          double bead_spacing, double layer_height, double chord_error, double torch_distance,
+                          int layers, double depth_threshold, int outward, const std::string& bias, double min_coverage,
+                          double min_crater_coverage, const py::object& out) {
+  WeldLayersJobOptions options;
+  options.eroded_path = path_of(eroded);
+  options.reference_path = path_of(reference);
+  if (!options.reference_path.empty() && reference_from_border) {
+    throw Error("weld-layers: give --reference FILE or --reference-from-border, not both");
+  }
+  if (options.reference_path.empty() && !reference_from_border) {
+    throw Error("weld-layers: give --reference FILE or --reference-from-border");
+  }
+  if (layers < 0 || layers > kMaxWeldLayers)
+    throw Error("--layers: not in [0, " + std::to_string(kMaxWeldLayers) + "]");
+  if (outward < -1 || outward > 1) throw Error("--outward: not in [-1, 1]");
+  if (bias != "check" && bias != "remove" && bias != "keep")
+    throw Error("--bias: " + bias + " not in {check, remove, keep}");
+  options.weld.bead_spacing_mm = bead_spacing;
+  options.weld.layer_height_mm = layer_height;
+  options.weld.chord_error_mm = chord_error;
+  options.weld.torch_distance_mm = torch_distance;
+  options.weld.layers = layers;
+  options.weld.depth_threshold_mm = depth_threshold;
+  options.weld.outward_side = outward;
+  options.weld.bias = bias == "remove" ? BiasMode::kRemove : bias == "keep" ? BiasMode::kKeep : BiasMode::kCheck;
+  options.weld.min_coverage_pct = min_coverage;
+  options.weld.min_crater_coverage_pct = min_crater_coverage;
+  options.out_path = path_of(out);
+  const WeldLayersJobResult job = [&] {
+    py::gil_scoped_release release;
+    return run_weld_layers(options);
+  }();
+  // The CSV's rows (layer, path, point, normal), as arrays.
+  std::vector<std::int32_t> layer, path;
+  std::vector<Eigen::Vector3d> points, normals;
+  for (const WeldPath& p : job.weld.paths) {
+    layer.insert(layer.end(), p.points.size(), p.layer);
+    path.insert(path.end(), p.points.size(), p.path);
+    points.insert(points.end(), p.points.begin(), p.points.end());
+    normals.insert(normals.end(), p.normals.begin(), p.normals.end());
+  }
+  py::dict arrays;
+  arrays["layer"] = owned(std::move(layer));
+  arrays["path"] = owned(std::move(path));
+  arrays["points_mm"] = owned(std::move(points));
+  arrays["normals"] = owned(std::move(normals));
+  return answer(weld_layers_json(options, job), arrays);
+}
+
 }  // namespace
 }  // namespace conform::python
 
@@ -240,4 +291,11 @@ PYBIND11_MODULE(_conform, m) {
   m.def("saddle", &job_saddle, py::kw_only(), arg("R"), arg("r"), arg("right_angle_pose_deg"),
         arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,
         arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none());
+  const WeldLayerOptions weld;
+  m.def("weld_layers", &job_weld_layers, arg("eroded"), py::kw_only(), arg("reference") = py::none(),
+        arg("reference_from_border") = false, arg("bead_spacing"), arg("layer_height"), arg("chord_error"),
+        arg("torch_distance") = weld.torch_distance_mm, arg("layers") = weld.layers,
+        arg("depth_threshold") = weld.depth_threshold_mm, arg("outward") = weld.outward_side, arg("bias") = "check",
+        arg("min_coverage") = weld.min_coverage_pct, arg("min_crater_coverage") = weld.min_crater_coverage_pct,
+        arg("out") = py::none());
 }

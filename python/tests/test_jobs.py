@@ -10,18 +10,20 @@ import conform
 from conftest import cli, cli_json
 
 
-def assert_same(python, cli_values, tol=1e-9):
-    """Every key of the CLI's JSON, with the same value (numbers to tol relative)."""
-    assert set(python) == set(cli_values)
-    for key, expected in cli_values.items():
-        got = python[key]
-        if isinstance(expected, float) and isinstance(got, float):
-            assert got == pytest.approx(expected, rel=tol, abs=tol), key
-        elif isinstance(expected, list):
-            np.testing.assert_allclose(np.asarray(got, dtype=float), np.asarray(expected, dtype=float), rtol=tol,
-                                       atol=tol, err_msg=key)
-        else:
-            assert got == expected, key
+def assert_same(python, cli_values, tol=1e-9, where="JSON"):
+    """The CLI's JSON, key for key and item for item, numbers to tol (relative and absolute)."""
+    if isinstance(cli_values, dict):
+        assert isinstance(python, dict) and set(python) == set(cli_values), where
+        for key in cli_values:
+            assert_same(python[key], cli_values[key], tol, f"{where}.{key}")
+    elif isinstance(cli_values, list):
+        assert isinstance(python, list) and len(python) == len(cli_values), where
+        for i, (got, expected) in enumerate(zip(python, cli_values)):
+            assert_same(got, expected, tol, f"{where}[{i}]")
+    elif isinstance(cli_values, float) and not isinstance(python, bool):
+        assert python == pytest.approx(cli_values, rel=tol, abs=tol), where
+    else:
+        assert python == cli_values and type(python) is type(cli_values), where
 
 
 def test_compare_matches_cli(tubes):
@@ -128,3 +130,20 @@ def test_progress_and_gil(tubes):
 
     with pytest.raises(KeyboardInterrupt):
         conform.compare(tubes["scan"], tubes["nominal"], progress=fail)
+
+
+def test_weld_layers_matches_cli(tmp_path):
+    eroded = tmp_path / "blade.csv"
+    cli("generate", "eroded", "--out", eroded)
+    common = ["--bead-spacing", 3, "--layer-height", 1, "--chord-error", 0.05, "--torch-distance", 10]
+    expected = cli_json("weld-layers", "--eroded", eroded, "--reference", tmp_path / "blade.reference.csv", *common)
+    r = conform.weld_layers(eroded, reference=tmp_path / "blade.reference.csv", bead_spacing=3, layer_height=1,
+                            chord_error=0.05, torch_distance=10)
+    assert_same(r.to_dict(), expected)
+    assert r.ok and r.points_mm.shape == (len(r.layer), 3) and set(r.layer) == set(range(1, r.layers + 1))
+    expected = cli_json("weld-layers", "--eroded", eroded, "--reference-from-border", "--bias", "keep", *common)
+    r = conform.weld_layers(eroded, reference_from_border=True, bias="keep", bead_spacing=3, layer_height=1,
+                            chord_error=0.05, torch_distance=10)
+    assert_same(r.to_dict(), expected)
+    with pytest.raises(conform.Error, match="--reference-from-border"):
+        conform.weld_layers(eroded, bead_spacing=3, layer_height=1, chord_error=0.05)
