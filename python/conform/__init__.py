@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "profile", "JOBS"]
 
 
 class Result:
@@ -83,5 +83,11 @@ def weld_layers(eroded, **options):
     return _result("weld_layers", _conform.weld_layers(eroded, **options))
 
 
+def profile(edge, features, **options):
+    """`conform profile`: where to cut a deformed ship profile's features. Arrays (the CSV's rows): feature (index
+    into `features`), points_mm (M, 3), normals (M, 3), directions (M, 3)."""
+    return _result("profile", _conform.profile(edge, features, **options))
+
+
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers}
+JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile}

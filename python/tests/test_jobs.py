@@ -147,3 +147,18 @@ def test_weld_layers_matches_cli(tmp_path):
     assert_same(r.to_dict(), expected)
     with pytest.raises(conform.Error, match="--reference-from-border"):
         conform.weld_layers(eroded, bead_spacing=3, layer_height=1, chord_error=0.05)
+
+
+def test_profile_matches_cli(tmp_path):
+    edge = tmp_path / "profile.csv"
+    cli("generate", "profile", "--out", edge, "--kink-deg", 0.5, "--seed", 8)
+    features = tmp_path / "profile.features.csv"
+    for flags, kwargs in [([], {}), (["--model", "cubic", "--web-normal", "0,0.1,1"],
+                                     {"model": "cubic", "web_normal": [0, 0.1, 1]})]:
+        expected = cli_json("profile", "--edge", edge, "--features", features, *flags)
+        r = conform.profile(edge, features, **kwargs)
+        assert_same(r.to_dict(), expected)
+        assert r.points_mm.shape == (sum(f["points"] for f in r.features), 3)
+        assert r.feature.max() == len(r.features) - 1
+    with pytest.raises(conform.Error, match="--model"):
+        conform.profile(edge, features, model="quintic")
