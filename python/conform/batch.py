@@ -171,8 +171,9 @@ def main(argv=None):
             client = Client(args.scheduler)
             cluster = None
         else:
+            # One OpenMP thread per worker process: the workers, not the threads of one job, share the cores.
             cluster = LocalCluster(n_workers=args.local_workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+                                   dashboard_address=None, env={"OMP_NUM_THREADS": "1"})
             client = Client(cluster)
     except OSError as e:
         print(f"conform.batch: error: cannot reach the scheduler: {e}", file=sys.stderr)
