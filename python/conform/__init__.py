@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "profile", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "profile", "tube_joint", "JOBS"]
 
 
 class Result:
@@ -89,5 +89,17 @@ def profile(edge, features, **options):
     return _result("profile", _conform.profile(edge, features, **options))
 
 
+def tube_joint(leg, stub, **options):
+    """`conform tube-joint`: cutting and welding paths of a stub on a leg, from their scans (paths, arrays or
+    Geometry). Options, named like the CLI's flags, defaults as the CLI's: pitch_deg, offset, protrusion (or
+    leg_pose: path or (4, 4) T_S_L), leg_markers, stub_markers, marker_tolerance, backtrack_tolerance,
+    max_facet_error, island_ratio, wall_thickness (mm, or [leg, stub]), step_deg or step_mm, smoothing,
+    smoothing_rms, groove_deg ([toe, side, heel, side]), groove_table, groove_interpolation, weld_angle_deg,
+    cut_standoff, weld_standoff, k_normals, k_refine, out_path, out_cut, out_weld, progress.
+    Arrays (the path's rows): phi_rad, points_mm, tangents, stub_normals, leg_normals, cut_directions,
+    weld_directions (M, 3), groove_rad, psi_rad."""
+    return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
+
+
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile}
+JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}

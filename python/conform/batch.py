@@ -3,7 +3,7 @@
     python3 -m conform.batch MANIFEST.csv --out-dir DIR [--local-workers N | --scheduler tcp://HOST:8786]
 
 MANIFEST.csv: a header row, then one row per part: `id`, `job` (compare, fit_cylinder, pose_error, saddle, weld_layers,
-profile), then the
+profile, tube_joint), then the
 job's options as columns named like the Python keyword arguments (scan, reference, transform, tolerance, ...). An
 empty cell leaves that option at its default. Relative input paths are relative to the manifest's folder; output
 options (out, out_deviation, ...) relative to DIR.
@@ -28,9 +28,11 @@ HEADLINES = {
     "pose_error": (lambda j: True, ["rotation_deg", "translation_mm"]),
     "saddle": (lambda j: j["converged"], ["points", "path_length_mm", "speed_ripple_pct"]),
     "profile": (lambda j: j["ok"], ["edge_points", "edge_rms_mm", "mapped_points", "termination"]),
+    "tube_joint": (lambda j: j["ok"], ["points", "path_length_mm", "condition", "termination"]),
     "weld_layers": (lambda j: j["ok"], ["layers", "paths", "total_length_mm", "damage_coverage_pct", "termination"]),
 }
-INPUTS = {"scan", "reference", "transform", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge"}
+INPUTS = {"scan", "reference", "transform", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge",
+          "leg", "stub", "leg_pose", "leg_markers", "stub_markers", "groove_table"}
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 
 
@@ -55,7 +57,7 @@ def part_options(row, manifest_dir, out_dir):
             options[key] = os.path.join(manifest_dir, text)
         elif key == "out" or key.startswith("out_"):
             options[key] = os.path.join(out_dir, text)
-        elif key in ("axis", "web_normal"):
+        elif key in ("axis", "web_normal", "groove_deg", "wall_thickness"):
             options[key] = [float(v) for v in re.split(r"[ ,]+", text)]
         else:
             options[key] = _value(text)

@@ -3,10 +3,13 @@
 // the CLI runs, with the GIL released, and returns (the CLI's JSON as text, per-point arrays). Arrays are views over
 // the result's own vectors (moved, not copied), and over the Geometry conform.read returns.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -23,6 +26,7 @@
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/profile_json.h"
 #include "conform/pipelines/saddle_json.h"
+#include "conform/pipelines/tube_joint_json.h"
 #include "conform/pipelines/weld_layers_json.h"
 #include "inputs.h"
 
@@ -310,6 +314,106 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
   return answer(profile_json(options, job), arrays);
 }
 
+// One number for both walls, or [leg, stub].
+std::vector<double> walls_of(const py::object& value) {
+  if (value.is_none()) return {};
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return {value.cast<double>()};
+  return value.cast<std::vector<double>>();
+}
+
+py::dict tube_joint_arrays(TubeJointSolution& s) {
+  std::vector<double> phi;
+  std::vector<Eigen::Vector3d> point, tangent, stub_normal, leg_normal, cut, weld;
+  for (const PathFrame& f : s.frames) {
+    phi.push_back(f.phi_rad);
+    point.push_back(f.point);
+    tangent.push_back(f.tangent);
+    stub_normal.push_back(f.stub_normal);
+    leg_normal.push_back(f.leg_normal);
+  }
+  for (const ToolPose& p : s.tools.cut) cut.push_back(p.direction);
+  for (const ToolPose& p : s.tools.weld) weld.push_back(p.direction);
+  py::dict arrays;
+  arrays["warnings"] = py::cast(s.warnings);
+  arrays["phi_rad"] = owned(std::move(phi));
+  arrays["points_mm"] = owned(std::move(point));
+  arrays["tangents"] = owned(std::move(tangent));
+  arrays["stub_normals"] = owned(std::move(stub_normal));
+  arrays["leg_normals"] = owned(std::move(leg_normal));
+  arrays["cut_directions"] = owned(std::move(cut));
+  arrays["weld_directions"] = owned(std::move(weld));
+  arrays["groove_rad"] = owned(std::move(s.tools.groove_rad));
+  arrays["psi_rad"] = owned(std::move(s.tools.psi_rad));
+  return arrays;
+}
+
+py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py::kwargs& kw) {
+  TubeJointRequest request;
+  TubeJointJobOptions& o = request.job;
+  Inputs inputs;
+  o.leg_path = inputs.geometry(leg, "leg");
+  o.stub_path = inputs.geometry(stub, "stub");
+  const auto take = [&kw](const char* name) -> py::object {
+    return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
+  };
+  const auto set = [&take](const char* name, auto& field) {
+    const py::object v = take(name);
+    if (!v.is_none()) field = v.cast<std::remove_reference_t<decltype(field)>>();
+  };
+  static const char* const known[] = {"pitch_deg",        "offset",
+                                      "protrusion",       "leg_pose",
+                                      "leg_markers",      "stub_markers",
+                                      "marker_tolerance", "backtrack_tolerance",
+                                      "max_facet_error",  "island_ratio",
+                                      "wall_thickness",   "step_deg",
+                                      "step_mm",          "smoothing",
+                                      "smoothing_rms",    "groove_deg",
+                                      "groove_table",     "groove_interpolation",
+                                      "weld_angle_deg",   "cut_standoff",
+                                      "weld_standoff",    "k_normals",
+                                      "k_refine",         "out_path",
+                                      "out_cut",          "out_weld",
+                                      "progress"};
+  for (const auto& item : kw) {
+    const std::string name = py::str(item.first);
+    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return name == k; }) == std::end(known)) {
+      throw py::type_error("tube_joint() got an unexpected keyword argument '" + name + "'");
+    }
+  }
+  if (!take("pitch_deg").is_none()) request.pitch_deg = take("pitch_deg").cast<double>();
+  set("offset", o.spec.offset_mm);
+  request.protrusion_given = !take("protrusion").is_none();
+  set("protrusion", o.spec.protrusion_mm);
+  o.leg_pose_path = inputs.transform(take("leg_pose"), "leg_pose");
+  o.leg_markers_path = path_of(take("leg_markers"));
+  o.stub_markers_path = path_of(take("stub_markers"));
+  set("marker_tolerance", o.marker_tolerance_mm);
+  set("backtrack_tolerance", o.solve.backtrack_tolerance_mm);
+  set("max_facet_error", o.solve.max_facet_error_mm);
+  set("island_ratio", o.solve.max_island_ratio);
+  request.walls_mm = walls_of(take("wall_thickness"));
+  set("step_deg", request.step_deg);
+  if (!take("step_mm").is_none()) request.step_mm = take("step_mm").cast<double>();
+  set("smoothing", request.smoothing_mm2);
+  set("smoothing_rms", request.smoothing_rms_mm);
+  if (!take("groove_deg").is_none()) request.groove_deg = take("groove_deg").cast<std::array<double, 4>>();
+  request.groove_table_path = path_of(take("groove_table"));
+  set("groove_interpolation", request.interpolation);
+  set("weld_angle_deg", request.weld_angle_deg);
+  set("cut_standoff", o.solve.tools.cut_standoff_mm);
+  set("weld_standoff", o.solve.tools.weld_standoff_mm);
+  set("k_normals", o.solve.geometry.k_normals);
+  set("k_refine", o.solve.geometry.k_refine);
+  o.out_path = path_of(take("out_path"));
+  o.out_cut = path_of(take("out_cut"));
+  o.out_weld = path_of(take("out_weld"));
+  TubeJointJobOptions options = tube_joint_job_options(request);
+  const Progress progress(take("progress"));
+  options.solve.progress = progress.function();
+  TubeJointJobResult job = released(progress, [&] { return run_tube_joint(options); });
+  return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
+}
+
 }  // namespace
 }  // namespace conform::python
 
@@ -365,4 +469,7 @@ PYBIND11_MODULE(_conform, m) {
         arg("chord_tolerance") = profile.compensation.sampling.chord_tolerance_mm,
         arg("max_gap") = profile.compensation.edge.points.max_gap_mm, arg("noise") = profile.compensation.edge.noise_mm,
         arg("out") = py::none());
+  // Keyword arguments as the CLI's flags (tube_joint_json.h's TubeJointRequest holds their defaults); see
+  // conform.tube_joint in __init__.py for the list.
+  m.def("tube_joint", &job_tube_joint, arg("leg"), arg("stub"));
 }

@@ -162,3 +162,25 @@ def test_profile_matches_cli(tmp_path):
         assert r.feature.max() == len(r.features) - 1
     with pytest.raises(conform.Error, match="--model"):
         conform.profile(edge, features, model="quintic")
+
+
+def test_tube_joint_matches_cli(tmp_path):
+    leg, stub = tmp_path / "leg.ply", tmp_path / "stub.ply"
+    cli("generate", "tube-joint", "--out-leg", leg, "--out-stub", stub, "--out-truth", tmp_path / "truth.csv",
+        "--pitch-deg", 45, "--offset", 100, "--ovality-pct", 1, "--peaking", 3, "--noise", 0.2, "--edge", 10)
+    joint = ["--pitch-deg", 45, "--offset", 100, "--protrusion", 2014.2135623730949]
+    timing = ("intersection_s", "total_s")  # wall-clock seconds, different in every run
+    for flags, kwargs in [([], {}), (["--groove-deg", "30,40,50,40", "--wall-thickness", "20,10", "--step-mm", 10],
+                                     {"groove_deg": [30, 40, 50, 40], "wall_thickness": [20, 10], "step_mm": 10})]:
+        expected = cli_json("tube-joint", "--leg", leg, "--stub", stub, *joint, *flags)
+        r = conform.tube_joint(leg, stub, pitch_deg=45, offset=100, protrusion=2014.2135623730949, **kwargs)
+        got = r.to_dict()
+        for key in timing:
+            got[key], expected[key] = 0.0, 0.0
+        assert_same(got, expected)
+        if not flags:  # the second joint's walls put a tool inside material: ok false, as the CLI's exit 1
+            assert r.ok and r.points_mm.shape == (r.points, 3) and r.cut_directions.shape == (r.points, 3)
+    with pytest.raises(conform.Error, match="--protrusion"):
+        conform.tube_joint(leg, stub, pitch_deg=45, offset=100)
+    with pytest.raises(TypeError, match="protrusoin"):
+        conform.tube_joint(leg, stub, protrusoin=1.0)
