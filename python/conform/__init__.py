@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "weld_layers", "profile", "tube_joint", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
 
 
 class Result:
@@ -99,6 +99,16 @@ def tube_joint(leg, stub, **options):
     Arrays (the path's rows): phi_rad, points_mm, tangents, stub_normals, leg_normals, cut_directions,
     weld_directions (M, 3), groove_rad, psi_rad."""
     return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
+
+
+def generate_tube(out, **options):
+    """`conform generate tube`: a synthetic tube scan written to `out` (.ply/.stl) with its truth beside it. Options
+    as the CLI's flags: radius, length, arc_deg, arc_center_deg, inner, edge or vertices, axis_point, axis_direction,
+    azimuth_reference, ovality, ovality_azimuth_deg, seam_height, seam_width, seam_azimuth_deg, bump (a list of
+    [az_deg, z_mm, height_mm, radius_mm]), bow, bow_azimuth_deg, noise, noise_type, noise_direction, hole (a list of
+    [az_deg, z_mm, radius_mm]), holes, hole_radius, outliers, outlier_distance, seed, ascii, double, normals,
+    progress. Read the scan back with conform.read(out)."""
+    return _result("generate_tube", _conform.generate_tube(out, **options))
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -23,6 +24,7 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/compare_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/generate_tube_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/profile_json.h"
 #include "conform/pipelines/saddle_json.h"
@@ -414,6 +416,99 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
+// Keyword arguments the job knows, or TypeError naming the first one it does not (as Python does).
+void check_keywords(const char* job, const py::kwargs& kw, std::initializer_list<const char*> known) {
+  for (const auto& item : kw) {
+    const std::string name = py::str(item.first);
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
+      throw py::type_error(std::string(job) + "() got an unexpected keyword argument '" + name + "'");
+    }
+  }
+}
+
+Eigen::Vector3d vector_of(const py::handle& value) {
+  const std::array<double, 3> v = value.cast<std::array<double, 3>>();
+  return {v[0], v[1], v[2]};
+}
+
+py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
+  check_keywords("generate_tube", kw,
+                 {"radius",
+                  "length",
+                  "arc_deg",
+                  "arc_center_deg",
+                  "inner",
+                  "edge",
+                  "vertices",
+                  "axis_point",
+                  "axis_direction",
+                  "azimuth_reference",
+                  "ovality",
+                  "ovality_azimuth_deg",
+                  "seam_height",
+                  "seam_width",
+                  "seam_azimuth_deg",
+                  "bump",
+                  "bow",
+                  "bow_azimuth_deg",
+                  "noise",
+                  "noise_type",
+                  "noise_direction",
+                  "hole",
+                  "holes",
+                  "hole_radius",
+                  "outliers",
+                  "outlier_distance",
+                  "seed",
+                  "ascii",
+                  "double",
+                  "normals",
+                  "progress"});
+  GenerateTubeRequest r;
+  r.out_path = path_of(out);
+  const auto set = [&kw](const char* name, auto& field) {
+    if (kw.contains(name) && !py::object(kw[name]).is_none()) {
+      field = py::object(kw[name]).cast<std::remove_reference_t<decltype(field)>>();
+    }
+  };
+  if (kw.contains("edge") && kw.contains("vertices")) throw Error("--edge excludes --vertices");
+  set("radius", r.tube.radius_mm);
+  set("length", r.tube.length_mm);
+  set("arc_deg", r.arc_deg);
+  set("arc_center_deg", r.arc_center_deg);
+  set("inner", r.inner);
+  set("edge", r.tube.edge_mm);
+  set("vertices", r.tube.vertex_count);
+  if (kw.contains("axis_point")) r.axis_point = vector_of(kw["axis_point"]);
+  if (kw.contains("axis_direction")) r.axis_direction = vector_of(kw["axis_direction"]);
+  if (kw.contains("azimuth_reference")) r.azimuth_reference = vector_of(kw["azimuth_reference"]);
+  set("ovality", r.tube.ovality_mm);
+  set("ovality_azimuth_deg", r.ovality_azimuth_deg);
+  set("seam_height", r.tube.seam_height_mm);
+  set("seam_width", r.tube.seam_width_mm);
+  set("seam_azimuth_deg", r.seam_azimuth_deg);
+  set("bump", r.bumps);
+  set("bow", r.tube.bow_mm);
+  set("bow_azimuth_deg", r.bow_azimuth_deg);
+  set("noise", r.tube.noise_mm);
+  set("noise_type", r.noise_type);
+  set("noise_direction", r.noise_direction);
+  set("hole", r.holes);
+  set("holes", r.tube.random_holes);
+  set("hole_radius", r.tube.random_hole_radius_mm);
+  set("outliers", r.tube.outlier_fraction);
+  set("outlier_distance", r.tube.outlier_distance_mm);
+  set("seed", r.seed);
+  set("ascii", r.ascii);
+  set("double", r.double_precision);
+  set("normals", r.normals);
+  GenerateTubeOptions options = generate_tube_options(r);
+  const Progress progress(kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
+  options.tube.progress = progress.function();
+  const GenerateTubeResult result = released(progress, [&] { return run_generate_tube(options); });
+  return answer(generate_tube_json(result), py::dict());
+}
+
 }  // namespace
 }  // namespace conform::python
 
@@ -472,4 +567,6 @@ PYBIND11_MODULE(_conform, m) {
   // Keyword arguments as the CLI's flags (tube_joint_json.h's TubeJointRequest holds their defaults); see
   // conform.tube_joint in __init__.py for the list.
   m.def("tube_joint", &job_tube_joint, arg("leg"), arg("stub"));
+  // Keyword arguments as the flags of `conform generate tube` (GenerateTubeRequest holds their defaults).
+  m.def("generate_tube", &job_generate_tube, arg("out"));
 }

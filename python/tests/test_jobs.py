@@ -184,3 +184,23 @@ def test_tube_joint_matches_cli(tmp_path):
         conform.tube_joint(leg, stub, pitch_deg=45, offset=100)
     with pytest.raises(TypeError, match="protrusoin"):
         conform.tube_joint(leg, stub, protrusoin=1.0)
+
+
+def test_generate_tube_matches_cli(tmp_path):
+    flags = ["--radius", 40, "--length", 60, "--arc-deg", 120, "--vertices", 1500, "--ovality", 0.3, "--bump",
+             "10,5,0.4,8", "--hole", "-20,0,4", "--noise", 0.01, "--noise-type", "uniform", "--seed", 5,
+             "--axis-direction", "0,1,1", "--double"]
+    expected = cli_json("generate", "tube", "--out", tmp_path / "cli.ply", *flags, "--quiet")
+    r = conform.generate_tube(tmp_path / "py.ply", radius=40, length=60, arc_deg=120, vertices=1500, ovality=0.3,
+                              bump=[[10, 5, 0.4, 8]], hole=[[-20, 0, 4]], noise=0.01, noise_type="uniform", seed=5,
+                              axis_direction=[0, 1, 1], double=True)
+    got = r.to_dict()
+    for key in ("mesh", "truth_file"):
+        assert got[key] == expected[key].replace("cli.", "py.")
+        got[key] = expected[key]
+    assert got["truth"]["mesh_file"] == "py.ply"
+    got["truth"]["mesh_file"] = expected["truth"]["mesh_file"]
+    assert_same(got, expected)
+    assert (tmp_path / "py.ply").read_bytes() == (tmp_path / "cli.ply").read_bytes()
+    with pytest.raises(conform.Error, match="--noise-type"):
+        conform.generate_tube(tmp_path / "x.ply", noise_type="pink")
