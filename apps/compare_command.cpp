@@ -8,19 +8,15 @@
 #include "command.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/compare.h"
+#include "conform/pipelines/compare_json.h"
 #include "deviation_colours.h"
 #include "deviation_histogram.h"
-#include "json_values.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
-
-nlohmann::json path_or_null(const std::string& path) {
-  return path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
-}
 
 class CompareCommand : public Command {
  public:
@@ -67,7 +63,7 @@ class CompareCommand : public Command {
     warn_all(result.warnings);
     if (!result.deviation.note.empty()) warn(result.deviation.note);
     if (json_) {
-      print_json(to_json(result));
+      print_json(compare_json(options_, result, units_));
     } else {
       print_text(result);
     }
@@ -79,43 +75,6 @@ class CompareCommand : public Command {
   }
 
  private:
-  nlohmann::json to_json(const CompareResult& r) const {
-    const DeviationStatistics& s = r.statistics;
-    nlohmann::json j = {{"scan", options_.scan_path},
-                        {"reference", options_.reference_path},
-                        {"transform", path_or_null(options_.transform_path)},
-                        {"T_ref_scan", app::to_json(r.T_ref_scan)},
-                        {"units", units_},
-                        {"signed", r.deviation.is_signed()},
-                        {"note", path_or_null(r.deviation.note)},
-                        {"points", r.scan_points},
-                        {"matched", r.deviation.matched},
-                        {"reference_points", r.reference_points},
-                        {"reference_faces", r.reference_faces},
-                        {"mean_mm", s.mean_mm},
-                        {"std_mm", s.std_mm},
-                        {"rms_mm", s.rms_mm},
-                        {"min_mm", s.min_mm},
-                        {"max_mm", s.max_mm},
-                        {"mean_abs_mm", s.mean_abs_mm},
-                        {"p5_mm", s.p5_mm},
-                        {"p50_mm", s.p50_mm},
-                        {"p95_mm", s.p95_mm},
-                        {"p99_mm", s.p99_mm},
-                        {"p95_abs_mm", s.p95_abs_mm},
-                        {"percentiles", "linear between closest ranks (Hyndman & Fan 7, NumPy's default)"},
-                        {"out_deviation", path_or_null(r.out_deviation_path)},
-                        {"out_histogram", path_or_null(r.out_histogram_path)}};
-    if (s.tolerance_mm) {
-      j["tolerance_mm"] = *s.tolerance_mm;
-      j["in_tolerance_pct"] = s.in_tolerance_pct;
-      j["above_tolerance_pct"] = s.above_pct;
-      j["below_tolerance_pct"] = s.below_pct;
-      j["within_tolerance"] = s.within_tolerance();
-    }
-    return j;
-  }
-
   void print_text(const CompareResult& r) const {
     const DeviationStatistics& s = r.statistics;
     std::printf("scan         %s (%zu points)\n", options_.scan_path.c_str(), r.scan_points);

@@ -10,7 +10,7 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/fit_cylinder.h"
-#include "json_values.h"
+#include "conform/pipelines/fit_cylinder_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -33,8 +33,7 @@ class FitCylinderCommand : public Command {
     max_radius_ = c.add_option("--max-radius", max_radius_mm_, "Largest radius accepted, mm; 0: none");
     c.add_option("--axis", axis_, "Expected axis direction x y z (any length, either sign)")->expected(3);
     c.add_option("--axis-tolerance-deg", axis_tolerance_deg_, "Largest angle of the axis from --axis, deg");
-    c.add_option("--normals-k", options_.fit.normal_neighbors,
-                 "Neighbours of the PCA normals when the file has none");
+    c.add_option("--normals-k", options_.fit.normal_neighbors, "Neighbours of the PCA normals when the file has none");
     c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
     c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
@@ -55,7 +54,7 @@ class FitCylinderCommand : public Command {
     const FitCylinderJobResult result = run_fit_cylinder(options_);
     warn_all(result.warnings);
     if (json_) {
-      print_json(to_json(result));
+      print_json(fit_cylinder_json(result));
     } else {
       print_text(result);
     }
@@ -67,34 +66,6 @@ class FitCylinderCommand : public Command {
   }
 
  private:
-  static nlohmann::json to_json(const FitCylinderJobResult& job) {
-    const CylinderFitResult& f = job.fit;
-    return {{"input", job.input_path},
-            {"points", job.points},
-            {"normals", to_string(job.normals)},
-            {"ok", f.ok},
-            {"converged", f.converged},
-            {"failure", to_string(f.failure)},
-            {"termination", f.termination},
-            {"axis_point_mm", app::to_json(f.cylinder.axis_point)},
-            {"axis_direction", app::to_json(f.cylinder.axis_direction)},
-            {"radius_mm", f.cylinder.radius_mm},
-            {"rms_mm", f.rms_mm},
-            {"inliers", f.inliers.size()},
-            {"inlier_fraction", f.inlier_fraction},
-            {"radius_std_mm", f.radius_std_mm},
-            {"axis_angle_std_deg", degrees(f.axis_angle_std_rad)},
-            {"axis_point_std_mm", f.axis_point_std_mm},
-            {"noise_sigma_mm", f.noise_sigma_mm},
-            {"threshold_mm", f.threshold_mm},
-            {"arc_deg", degrees(f.arc_rad)},
-            {"side", to_string(f.side)},
-            {"ransac_iterations", f.ransac_iterations},
-            {"refine_rounds", f.refine_rounds},
-            {"solver_iterations", f.solver_iterations},
-            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
-  }
-
   static void print_text(const FitCylinderJobResult& job) {
     const CylinderFitResult& f = job.fit;
     const Eigen::Vector3d& c = f.cylinder.axis_point;

@@ -1,5 +1,6 @@
 // `conform generate tube`: a synthetic tube scan with deformations and scanner effects, and its ground truth
-// (pipelines/generate_tube.h). Maps flags in degrees to the API's radians, prints what was made.
+// (pipelines/generate_tube.h). Parses the flags into a GenerateTubeRequest
+// (pipelines/generate_tube_json.h, which maps degrees to the API's radians), prints what was made.
 
 #include <cmath>
 #include <cstdint>
@@ -8,17 +9,14 @@
 #include <vector>
 
 #include "command.h"
-#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube.h"
-#include "json_values.h"
+#include "conform/pipelines/generate_tube_json.h"
+#include "number_list.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
-
-// deg / 180 first, so that 90 deg is exactly pi / 2.
-double radians(double deg) { return deg / 180.0 * M_PI; }
 
 Eigen::Vector3d parse_vector(const std::string& text, const std::string& flag) {
   const std::vector<double> v = parse_numbers(text, 3, flag, "x,y,z");
@@ -43,15 +41,11 @@ class GenerateTubeCommand : public Command {
   }
 
   int run() override {
-    GenerateTubeOptions options;
-    options.out_path = out_;
-    options.encoding = ascii_ ? Encoding::kAscii : Encoding::kBinary;
-    options.double_precision = double_;
-    options.tube = tube_options();
+    GenerateTubeOptions options = generate_tube_options(request());
     options.tube.progress = stderr_progress(quiet_);
     const GenerateTubeResult result = run_generate_tube(options);
     if (json_) {
-      print_json(summary(result));
+      print_json(generate_tube_json(result));
     } else {
       print_text(result);
     }
@@ -93,8 +87,7 @@ class GenerateTubeCommand : public Command {
 
   void configure_effects(CLI::App& c) {
     c.add_option("--noise", t_.noise_mm, "Noise, mm: gaussian sigma or uniform half-width");
-    c.add_option("--noise-type", noise_type_, "gaussian or uniform")
-        ->check(CLI::IsMember({"gaussian", "uniform"}));
+    c.add_option("--noise-type", noise_type_, "gaussian or uniform")->check(CLI::IsMember({"gaussian", "uniform"}));
     c.add_option("--noise-direction", noise_direction_,
                  "normal (along the exact surface normal) or isotropic (uniform: in a ball)")
         ->check(CLI::IsMember({"normal", "isotropic"}));
@@ -107,47 +100,34 @@ class GenerateTubeCommand : public Command {
                  "Outliers move d to 2d along the normal, either side, mm");
   }
 
-  TubeOptions tube_options() const {
-    TubeOptions t = t_;
-    t.arc_rad = radians(arc_deg_);
-    t.arc_center_rad = radians(arc_center_deg_);
-    t.surface = inner_ ? TubeSurface::kInner : TubeSurface::kOuter;
-    t.ovality_azimuth_rad = radians(ovality_azimuth_deg_);
-    t.seam_azimuth_rad = radians(seam_azimuth_deg_);
-    t.bow_azimuth_rad = radians(bow_azimuth_deg_);
-    t.noise_distribution = noise_type_ == "uniform" ? NoiseDistribution::kUniform : NoiseDistribution::kGaussian;
-    t.noise_direction = noise_direction_ == "isotropic" ? NoiseDirection::kIsotropic : NoiseDirection::kNormal;
-    t.seed = seed_;
+  GenerateTubeRequest request() const {
+    GenerateTubeRequest r;
+    r.tube = t_;
+    r.out_path = out_;
+    r.arc_deg = arc_deg_;
+    r.arc_center_deg = arc_center_deg_;
+    r.inner = inner_;
+    r.ovality_azimuth_deg = ovality_azimuth_deg_;
+    r.seam_azimuth_deg = seam_azimuth_deg_;
+    r.bow_azimuth_deg = bow_azimuth_deg_;
+    r.noise_type = noise_type_;
+    r.noise_direction = noise_direction_;
+    r.seed = seed_;
     for (const std::string& text : bumps_) {
       const std::vector<double> v = parse_numbers(text, 4, "--bump", "AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM");
-      t.bumps.push_back({radians(v[0]), v[1], v[2], v[3]});
+      r.bumps.push_back({v[0], v[1], v[2], v[3]});
     }
     for (const std::string& text : holes_) {
       const std::vector<double> v = parse_numbers(text, 3, "--hole", "AZ_DEG,Z_MM,RADIUS_MM");
-      t.holes.push_back({radians(v[0]), v[1], v[2]});
+      r.holes.push_back({v[0], v[1], v[2]});
     }
-    const Eigen::Vector3d point = parse_vector(axis_point_, "--axis-point");
-    const Eigen::Vector3d direction = parse_vector(axis_direction_, "--axis-direction");
-    const Eigen::Vector3d reference = azimuth_reference_.empty()
-                                          ? default_azimuth_reference(direction)
-                                          : parse_vector(azimuth_reference_, "--azimuth-reference");
-    t.T_world_tube = tube_frame(point, direction, reference);
-    t.vertex_normals = normals_;
-    return t;
-  }
-
-  // The truth without the outliers' index list, which can be long: that stays in the file.
-  static nlohmann::json summary(const GenerateTubeResult& r) {
-    nlohmann::json truth = r.truth;
-    truth["scanner"]["outliers"].erase("indices");
-    return {{"mesh", r.mesh_path},
-            {"truth_file", r.truth_path},
-            {"vertices", r.vertices},
-            {"faces", r.faces},
-            {"holes", r.holes},
-            {"outliers", r.outliers},
-            {"surface_area_mm2", r.surface_area_mm2},
-            {"truth", truth}};
+    r.axis_point = parse_vector(axis_point_, "--axis-point");
+    r.axis_direction = parse_vector(axis_direction_, "--axis-direction");
+    if (!azimuth_reference_.empty()) r.azimuth_reference = parse_vector(azimuth_reference_, "--azimuth-reference");
+    r.ascii = ascii_;
+    r.double_precision = double_;
+    r.normals = normals_;
+    return r;
   }
 
   static void print_text(const GenerateTubeResult& r) {

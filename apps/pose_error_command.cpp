@@ -10,7 +10,7 @@
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/pose_error.h"
-#include "json_values.h"
+#include "conform/pipelines/pose_error_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -41,10 +41,7 @@ class PoseErrorCommand : public Command {
     options.mm_per_unit = millimetres_per_unit(units_);
     const PoseErrorResult r = run_pose_error(options);
     if (json_) {
-      print_json({{"transform_a", paths_[0]},
-                  {"transform_b", paths_[1]},
-                  {"rotation_deg", degrees(r.error.rotation_rad)},
-                  {"translation_mm", r.error.translation_mm}});
+      print_json(pose_error_json(options, r));
     } else {
       std::printf("rotation     %.9f deg\n", degrees(r.error.rotation_rad));
       std::printf("translation  %.9f mm\n", r.error.translation_mm);

@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "command.h"
-#include "number_list.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/profile.h"
+#include "conform/pipelines/profile_json.h"
+#include "number_list.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -23,13 +24,6 @@ Eigen::Vector3d parse_web_normal(const std::string& text) {
   return z;
 }
 
-nlohmann::json vector_json(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
-
-nlohmann::json residual_json(const ProfileEdgeResidual& r) {
-  if (!r.fitted) return nullptr;
-  return {{"rms_mm", r.rms_mm}, {"max_mm", r.max_mm}, {"max_index", r.max_index}};
-}
-
 class ProfileCommand : public Command {
  public:
   void configure(CLI::App& c) override {
@@ -39,8 +33,7 @@ class ProfileCommand : public Command {
     c.add_option("--features", features_,
                  "Designed features, .csv (id,type,tx_mm,ty_mm,radius_mm) or .json (docs/profile.md); required")
         ->required();
-    c.add_option("--model", model_,
-                 "Edge model: auto (the lower BIC of cubic and spline), cubic, spline")
+    c.add_option("--model", model_, "Edge model: auto (the lower BIC of cubic and spline), cubic, spline")
         ->check(CLI::IsMember({"auto", "cubic", "spline"}));
     CLI::Option* web = c.add_option("--web-normal", web_normal_,
                                     "Web normal Z, x,y,z (any length; its sign picks the side Tx goes to), machine "
@@ -58,14 +51,12 @@ class ProfileCommand : public Command {
     c.add_option("--direction", direction_,
                  "Edge points listed from the origin (forward) or from the profile's far end (reverse)")
         ->check(CLI::IsMember({"forward", "reverse"}));
-    c.add_option("--knot-spacing", knot_spacing_mm_,
-                 "Spline knot spacing, mm (0: max(10 steps, 250 sigma, 20 mm))");
+    c.add_option("--knot-spacing", knot_spacing_mm_, "Spline knot spacing, mm (0: max(10 steps, 250 sigma, 20 mm))");
     c.add_option("--outlier-sigma", outlier_sigma_,
                  "Edge points further than this many robust sigmas from the fitted edge are outliers");
     c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm");
     c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm");
-    c.add_option("--noise", noise_mm_,
-                 "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
+    c.add_option("--noise", noise_mm_, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
     c.add_option("--out", out_,
                  "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
@@ -96,7 +87,7 @@ class ProfileCommand : public Command {
     c.edge.noise_mm = noise_mm_;
     const ProfileJobResult result = run_profile(options);
     if (json_) {
-      print_json(to_json(result));
+      print_json(profile_json(options, result));
     } else {
       print_text(result);
     }
@@ -109,59 +100,15 @@ class ProfileCommand : public Command {
   }
 
  private:
-  nlohmann::json to_json(const ProfileJobResult& job) const {
-    const ProfileCompensationResult& r = job.compensation;
-    nlohmann::json features = nlohmann::json::array();
-    for (const ProfileFeatureResult& f : r.features) {
-      features.push_back({{"id", f.id},
-                          {"type", to_string(f.type)},
-                          {"points", f.mapped.size()},
-                          {"centre_mm", f.has_centre ? vector_json(f.centre) : nlohmann::json(nullptr)},
-                          {"cubic_deviation_max_mm", f.cubic_deviation_max_mm}});
-    }
-    return {{"edge_rms_mm", r.edge.rms_mm},
-            {"edge_max_mm", r.edge.max_mm},
-            {"model", to_string(r.edge.model)},
-            {"model_selection", r.edge.selection},
-            {"cubic_fit", residual_json(r.edge.cubic_fit)},
-            {"spline_fit", residual_json(r.edge.spline_fit)},
-            {"edge_points", job.edge_points},
-            {"edge_length_mm", r.edge.curve.length_mm()},
-            {"edge_spacing_median_mm", r.edge.points.median_spacing_mm},
-            {"edge_gap_max_mm", r.edge.points.max_gap_mm},
-            {"noise_mm", r.edge.noise_mm},
-            {"edge_duplicates_dropped", r.edge.duplicates_dropped},
-            {"edge_reordered", r.edge.points.reordered},
-            {"edge_outliers", r.edge.outliers},
-            {"edge_outlier_indices", r.edge.outlier_indices},
-            {"reweighting_passes", r.edge.reweighting_passes},
-            {"knot_spacing_mm", r.edge.knot_spacing_mm},
-            {"smoothing_converged", r.edge.smoothing_converged},
-            {"reversed", direction_ == "reverse"},
-            {"web", r.web_source},
-            {"web_tilt_deg", r.local_web ? nlohmann::json(nullptr) : nlohmann::json(r.web_tilt_deg)},
-            {"warnings", r.warnings},
-            {"web_normal", r.local_web ? nlohmann::json(nullptr) : vector_json(r.web_normal)},
-            {"second_edge_points", job.second_edge_points},
-            {"web_width_min_mm", r.local_web ? nlohmann::json(r.web_width_min_mm) : nlohmann::json(nullptr)},
-            {"web_width_max_mm", r.local_web ? nlohmann::json(r.web_width_max_mm) : nlohmann::json(nullptr)},
-            {"mapped_points", r.mapped_points},
-            {"arc_length_residual_max_mm", r.arc_length_residual_max_mm},
-            {"cubic_deviation_max_mm", r.cubic_deviation_max_mm},
-            {"ok", r.ok},
-            {"termination", r.termination},
-            {"features", features},
-            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
-  }
-
   void print_text(const ProfileJobResult& job) const {
     const ProfileCompensationResult& r = job.compensation;
     const ProfileEdgeFit& e = r.edge;
     std::printf("edge          %zu points, %.3f mm long, spacing median %.3f mm, largest gap %.3f mm, noise %.4f mm\n",
                 job.edge_points, e.curve.length_mm(), e.points.median_spacing_mm, e.points.max_gap_mm, e.noise_mm);
-    std::printf("edge points   %zu outliers rejected (%d passes), %zu duplicates dropped, %zu out of order within "
-                "the noise\n",
-                e.outliers, e.reweighting_passes, e.duplicates_dropped, e.points.reordered);
+    std::printf(
+        "edge points   %zu outliers rejected (%d passes), %zu duplicates dropped, %zu out of order within "
+        "the noise\n",
+        e.outliers, e.reweighting_passes, e.duplicates_dropped, e.points.reordered);
     std::printf("cubic fit     RMS %.4f mm  max %.4f mm\n", e.cubic_fit.rms_mm, e.cubic_fit.max_mm);
     if (e.spline_fit.fitted) {
       std::printf("spline fit    RMS %.4f mm  max %.4f mm\n", e.spline_fit.rms_mm, e.spline_fit.max_mm);

@@ -7,29 +7,29 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/saddle.h"
+#include "conform/pipelines/saddle_json.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
-// deg / 180 first, so that 90 deg is exactly pi / 2 (the paper's joint) and 45 deg exactly pi / 4.
-double radians(double deg) { return deg / 180.0 * kPi; }
 double degrees(double rad) { return rad / kPi * 180.0; }
 
 class SaddleCommand : public Command {
  public:
   void configure(CLI::App& command) override {
-    command.add_option("--R", leg_radius_mm_, "Cylinder (leg) radius R, mm; required")->required();
-    command.add_option("--r", pipe_radius_mm_, "Pipe radius r, mm, 0 < r <= R (r = R: equal diameters); required")
+    command.add_option("--R", request_.leg_radius_mm, "Cylinder (leg) radius R, mm; required")->required();
+    command
+        .add_option("--r", request_.pipe_radius_mm, "Pipe radius r, mm, 0 < r <= R (r = R: equal diameters); required")
         ->required();
-    command.add_option("--pitch-deg", pitch_deg_,
+    command.add_option("--pitch-deg", request_.pitch_deg,
                        "Angle between the pipe axis and the cylinder axis, deg, in [1, 90]; 90 is the paper's "
                        "right-angle joint");
-    command.add_option("--offset", offset_mm_,
+    command.add_option("--offset", request_.offset_mm,
                        "Distance between the two axes, mm, |offset| + r <= R; 0: the axes intersect");
     command
-        .add_option("--right-angle-pose-deg,--start-pose-deg", start_pose_deg_,
+        .add_option("--right-angle-pose-deg,--start-pose-deg", request_.right_angle_pose_deg,
                     "Torch pose angle where the two surfaces meet at a right angle (phi of Eq. 12: the pose is 90 - "
                     "dihedral + phi; the pose at theta = 0 only for pitch 90, offset 0; Table 1 uses 45), deg, in "
                     "(-180, 180]; required")
@@ -52,28 +52,16 @@ class SaddleCommand : public Command {
   void declare_files(OutputSet& files) override { files.add_output(out_path_); }
 
   int run() override {
-    SaddleJobOptions options;
-    SaddleGeometry& geometry = options.saddle.geometry;
-    geometry.leg_radius_mm = leg_radius_mm_;
-    geometry.pipe_radius_mm = pipe_radius_mm_;
-    geometry.pitch_rad = radians(pitch_deg_);
-    geometry.offset_mm = offset_mm_;
-    options.saddle.start_pose_rad = radians(start_pose_deg_);
-    if (step_->count() > 0) {
-      options.saddle.rule = SaddleStepRule::kEqualAngle;
-      options.saddle.step_rad = radians(step_deg_);
-    } else if (speed_->count() > 0) {
-      options.saddle.rule = constant_speed_rule(geometry);
-      options.saddle.speed_mm_per_s = speed_mm_per_s_;
-      options.saddle.period_s = period_s_;
-    } else {
-      throw Error("saddle: give --step-deg A (equal-angle steps) or --speed MM_PER_S with --period S (constant speed)");
+    if (step_->count() > 0) request_.step_deg = step_deg_;
+    if (speed_->count() > 0) {
+      request_.speed_mm_per_s = speed_mm_per_s_;
+      request_.period_s = period_s_;
     }
-    options.out_path = out_path_;
-
+    request_.out_path = out_path_;
+    const SaddleJobOptions options = saddle_job_options(request_);
     const SaddleJobResult result = run_saddle(options);
     if (json_) {
-      print_json(to_json(result));
+      print_json(saddle_json(request_, result));
     } else {
       print_text(result);
     }
@@ -85,47 +73,17 @@ class SaddleCommand : public Command {
   }
 
  private:
-  nlohmann::json to_json(const SaddleJobResult& job) const {
-    const SaddleResult& s = job.saddle;
-    const bool equal_angle = s.rule == SaddleStepRule::kEqualAngle;
-    return {{"points", s.points.size()},
-            {"step_mm_min", s.step_mm_min},
-            {"step_mm_max", s.step_mm_max},
-            {"step_mm_mean", s.step_mm_mean},
-            {"speed_ripple_pct", s.speed_ripple_pct},
-            {"last_step_mm", s.last_step_mm},
-            {"last_step_partial", s.last_step_partial},
-            {"interpolation", to_string(s.rule)},
-            {"converged", s.converged},
-            {"curve_length_mm", s.curve_length_mm},
-            {"path_length_mm", s.path_length_mm},
-            {"pose_deg_min", degrees(s.pose_rad_min)},
-            {"pose_deg_max", degrees(s.pose_rad_max)},
-            {"max_pipe_residual_mm", s.max_pipe_residual_mm},
-            {"max_cylinder_residual_mm", s.max_leg_residual_mm},
-            {"R_mm", leg_radius_mm_},
-            {"r_mm", pipe_radius_mm_},
-            {"pitch_deg", pitch_deg_},
-            {"offset_mm", offset_mm_},
-            {"right_angle_pose_deg", start_pose_deg_},
-            {"start_pose_deg", start_pose_deg_},  // the same value, under its old name
-            {"corner_steps", s.corner_steps},
-            {"step_deg", equal_angle ? nlohmann::json(step_deg_) : nlohmann::json(nullptr)},
-            {"speed_mm_per_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(speed_mm_per_s_)},
-            {"period_s", equal_angle ? nlohmann::json(nullptr) : nlohmann::json(period_s_)},
-            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
-  }
-
   void print_text(const SaddleJobResult& job) const {
     const SaddleResult& s = job.saddle;
-    std::printf("seam          R %g mm, r %g mm, pitch %g deg, offset %g mm\n", leg_radius_mm_, pipe_radius_mm_,
-                pitch_deg_, offset_mm_);
+    std::printf("seam          R %g mm, r %g mm, pitch %g deg, offset %g mm\n", request_.leg_radius_mm,
+                request_.pipe_radius_mm, request_.pitch_deg, request_.offset_mm);
     if (s.rule == SaddleStepRule::kEqualAngle) {
       std::printf("interpolation %s, %g deg per step, pose %g deg at a right-angle dihedral\n", to_string(s.rule),
-                  step_deg_, start_pose_deg_);
+                  step_deg_, request_.right_angle_pose_deg);
     } else {
       std::printf("interpolation %s, %g mm/s x %g s = %g mm per period, pose %g deg at a right-angle dihedral\n",
-                  to_string(s.rule), speed_mm_per_s_, period_s_, speed_mm_per_s_ * period_s_, start_pose_deg_);
+                  to_string(s.rule), speed_mm_per_s_, period_s_, speed_mm_per_s_ * period_s_,
+                  request_.right_angle_pose_deg);
     }
     std::printf("points        %zu (%zu full steps, last step %.6f mm%s)\n", s.points.size(), s.full_steps,
                 s.last_step_mm, s.last_step_partial ? ", shortened to land on 360 deg" : "");
@@ -138,11 +96,7 @@ class SaddleCommand : public Command {
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
   }
 
-  double leg_radius_mm_ = 0.0;
-  double pipe_radius_mm_ = 0.0;
-  double pitch_deg_ = 90.0;
-  double offset_mm_ = 0.0;
-  double start_pose_deg_ = 0.0;
+  SaddleRequest request_;
   double step_deg_ = 0.0;
   double speed_mm_per_s_ = 0.0;
   double period_s_ = 0.0;

@@ -6,37 +6,21 @@
 #include <vector>
 
 #include "command.h"
-#include "number_list.h"
-#include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/tube_joint.h"
+#include "conform/pipelines/tube_joint_json.h"
+#include "number_list.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-double radians(double deg) { return deg / 180.0 * kPi; }
-double degrees(double rad) { return rad / kPi * 180.0; }
-
-std::array<double, 4> parse_groove(const std::string& text) {
+std::array<double, 4> parse_groove_deg(const std::string& text) {
   const std::vector<double> v = parse_numbers(text, 4, "--groove-deg", "toe,side,heel,side in degrees");
-  return {radians(v[0]), radians(v[1]), radians(v[2]), radians(v[3])};
+  return {v[0], v[1], v[2], v[3]};
 }
 
 // CSV `phi_deg,alpha_deg`: the groove table of Eq. (5), generalised.
-std::vector<std::pair<double, double>> read_groove_table(const std::string& path) {
-  const CsvTable table = read_csv(path, {"phi_deg", "alpha_deg"});
-  const Eigen::MatrixXd rows = table.numbers({"phi_deg", "alpha_deg"});
-  if (rows.rows() == 0) throw Error(path + ": the groove table has no rows");
-  std::vector<std::pair<double, double>> out;
-  for (Eigen::Index i = 0; i < rows.rows(); ++i) out.emplace_back(radians(rows(i, 0)), radians(rows(i, 1)));
-  GrooveTable check(out, GrooveInterpolation::kLinear);
-  std::string why;
-  if (!check.IsValid(&why)) throw Error(path + ": " + why);
-  return out;
-}
-
 std::vector<double> parse_walls(const std::string& text) {
   const bool two = text.find(',') != std::string::npos;
   const std::vector<double> v = parse_numbers(text, two ? 2 : 1, "--wall-thickness", "MM or LEG_MM,STUB_MM");
@@ -55,8 +39,7 @@ class TubeJointCommand : public Command {
         ->required();
     CLI::Option* pitch = c.add_option("--pitch-deg", pitch_deg_,
                                       "Angle between the leg and stub axes, deg, (0, 90]; required unless --leg-pose");
-    CLI::Option* offset =
-        c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm");
+    CLI::Option* offset = c.add_option("--offset", o_.spec.offset_mm, "Distance between the axes along y_L, mm");
     CLI::Option* protrusion = c.add_option("--protrusion", o_.spec.protrusion_mm,
                                            "Stub's distal end to the leg axis along the stub axis, mm, > 0; required "
                                            "unless --leg-pose");
@@ -83,17 +66,17 @@ class TubeJointCommand : public Command {
                  "Wall thickness, mm: one value for both, or LEG_MM,STUB_MM; checks every tool tip and approach line "
                  "against the walls (exit 1 when a tool is inside material)");
     CLI::Option* step_deg = c.add_option("--step-deg", step_deg_, "Resample at equal azimuth steps, deg");
-    CLI::Option* step_mm =
-        c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm");
+    CLI::Option* step_mm = c.add_option("--step-mm", step_mm_, "Resample at equal arc-length steps instead, mm");
     step_deg->excludes(step_mm);
     CLI::Option* smoothing = c.add_option(
         "--smoothing", smoothing_mm2_,
         "Closed smoothing cubic B-spline before resampling: target sum of squared residuals, mm^2 (splprep's s); "
         "default none");
-    CLI::Option* smoothing_rms = c.add_option("--smoothing-rms", smoothing_rms_mm_,
-                                              "Smoothing target as RMS per intersection point, mm");
+    CLI::Option* smoothing_rms =
+        c.add_option("--smoothing-rms", smoothing_rms_mm_, "Smoothing target as RMS per intersection point, mm");
     smoothing->excludes(smoothing_rms);
-    CLI::Option* groove = c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg, [0, 90)");
+    CLI::Option* groove =
+        c.add_option("--groove-deg", groove_, "Groove (cut) angle at toe,side,heel,side, deg, [0, 90)");
     c.add_option("--groove-table", groove_table_,
                  "CSV phi_deg,alpha_deg: groove angles at any azimuths (Eq. 5), instead of --groove-deg")
         ->excludes(groove);
@@ -102,8 +85,7 @@ class TubeJointCommand : public Command {
     c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg, [0, 90)");
     c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm");
     c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm");
-    c.add_option("--k-normals", o_.solve.geometry.k_normals,
-                 "Vertices per normal fit (PCA plane + quadric), >= 3");
+    c.add_option("--k-normals", o_.solve.geometry.k_normals, "Vertices per normal fit (PCA plane + quadric), >= 3");
     c.add_option("--k-refine", o_.solve.geometry.k_refine,
                  "Vertices per local surface fit when refining path points onto both scans; 0 = off (the paper's "
                  "point)");
@@ -119,44 +101,31 @@ class TubeJointCommand : public Command {
   }
 
   void declare_files(OutputSet& files) override {
-    files.add_inputs({o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path,
-                      groove_table_});
+    files.add_inputs(
+        {o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path, groove_table_});
     files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld});
   }
 
   int run() override {
-    TubeJointJobOptions o = o_;
-    if (o.leg_pose_path.empty() && pitch_->count() == 0) {
-      throw Error("tube-joint: give the joint as --pitch-deg A --offset MM --protrusion MM, or --leg-pose FILE");
-    }
-    if (o.leg_pose_path.empty() && protrusion_->count() == 0) {
-      throw Error("tube-joint: give --protrusion MM (the stub's distal end to the leg axis, along the stub axis)");
-    }
-    o.spec.pitch_rad = radians(pitch_deg_);
-    if (step_mm_option_->count() > 0) {
-      o.solve.sampling.spacing = PathSpacing::kArcLength;
-      o.solve.sampling.step_mm = step_mm_;
-    } else {
-      o.solve.sampling.step_rad = radians(step_deg_);
-    }
-    o.solve.sampling.smoothing_mm2 = smoothing_mm2_;
-    o.solve.sampling.smoothing_rms_mm = smoothing_rms_mm_;
-    if (!groove_.empty()) o.solve.tools.groove_rad = parse_groove(groove_);
-    if (!groove_table_.empty()) o.solve.tools.groove_table_rad = read_groove_table(groove_table_);
-    o.solve.tools.interpolation = interpolation_ == "quadratic" ? GrooveInterpolation::kQuadratic
-                                  : interpolation_ == "spline"  ? GrooveInterpolation::kSpline
-                                                                : GrooveInterpolation::kLinear;
-    if (!walls_.empty()) {
-      const std::vector<double> walls = parse_walls(walls_);
-      o.solve.safety.leg_wall_mm = walls[0];
-      o.solve.safety.stub_wall_mm = walls[1];
-    }
-    o.solve.tools.weld_angle_rad = radians(weld_deg_);
+    TubeJointRequest request;
+    request.job = o_;
+    if (pitch_->count() > 0) request.pitch_deg = pitch_deg_;
+    request.protrusion_given = protrusion_->count() > 0;
+    request.step_deg = step_deg_;
+    if (step_mm_option_->count() > 0) request.step_mm = step_mm_;
+    request.smoothing_mm2 = smoothing_mm2_;
+    request.smoothing_rms_mm = smoothing_rms_mm_;
+    if (!groove_.empty()) request.groove_deg = parse_groove_deg(groove_);
+    request.groove_table_path = groove_table_;
+    request.interpolation = interpolation_;
+    if (!walls_.empty()) request.walls_mm = parse_walls(walls_);
+    request.weld_angle_deg = weld_deg_;
+    TubeJointJobOptions o = tube_joint_job_options(request);
     o.solve.progress = stderr_progress(quiet_ || json_);
     const TubeJointJobResult r = run_tube_joint(o);
     const TubeJointSolution& s = r.solution;
     if (json_) {
-      print_json(summary(r));
+      print_json(tube_joint_json(r));
     } else {
       print_text(r);
     }
@@ -178,86 +147,6 @@ class TubeJointCommand : public Command {
   }
 
  private:
-  static nlohmann::json summary(const TubeJointJobResult& r) {
-    const TubeJointSolution& s = r.solution;
-    const bool ok = s.ok;
-    nlohmann::json j = {{"ok", ok},
-                        {"closed", ok},
-                        {"termination", s.termination},
-                        {"condition", ok ? nlohmann::json(nullptr) : nlohmann::json(s.check.condition)},
-                        {"points", ok ? s.path.points.size() : 0},
-                        {"path_length_mm", s.path.length_mm},
-                        {"max_step_mm", s.path.max_step_mm},
-                        {"min_step_mm", s.path.min_step_mm},
-                        {"smoothed", s.path.smoothed},
-                        {"smoothing_rms_mm", s.path.smoothing_rms_mm},
-                        {"leg_faces", r.leg_faces},
-                        {"stub_faces", r.stub_faces},
-                        {"segments", s.segments},
-                        {"curve_vertices", s.curve_vertices},
-                        {"candidate_pairs", s.candidate_pairs},
-                        {"dropped_vertices", s.dropped_vertices},
-                        {"intersection_s", s.intersection_seconds},
-                        {"total_s", s.total_seconds},
-                        {"written", r.written},
-                        {"leg_marker_residuals_mm", r.leg_marker_residuals_mm},
-                        {"stub_marker_residuals_mm", r.stub_marker_residuals_mm}};
-    if (!ok) {
-      j["where_mm"] = {s.check.where.x(), s.check.where.y(), s.check.where.z()};
-      j["where_azimuth_deg"] = degrees(s.check.azimuth_rad);
-    }
-    add_robustness(r, &j);
-    return j;
-  }
-
-  static nlohmann::json violation(const ToolViolation& v) {
-    return {{"count", v.count}, {"first_azimuth_deg", v.count > 0 ? degrees(v.first_phi_rad) : 0.0}};
-  }
-
-  static nlohmann::json reference(const TubeReferenceResult& r) {
-    return {{"method", r.method},
-            {"residuals_mm", r.marker_residuals_mm},
-            {"rms_mm", r.marker_rms_mm},
-            {"max_mm", r.marker_max_mm},
-            {"fit_axis_disagreement_deg", r.axis_disagreement_deg},
-            {"fit_axis_offset_mm", r.axis_offset_mm}};
-  }
-
-  static void add_robustness(const TubeJointJobResult& r, nlohmann::json* j) {
-    const TubeJointSolution& s = r.solution;
-    (*j)["warnings"] = s.warnings;
-    (*j)["leg_welded_vertices"] = s.leg_welded_vertices;
-    (*j)["stub_welded_vertices"] = s.stub_welded_vertices;
-    (*j)["islands"] = s.islands;
-    (*j)["longest_island_mm"] = s.longest_island_mm;
-    (*j)["merged_vertices"] = s.merged_vertices;
-    (*j)["backtrack_tolerance_mm"] = s.backtrack_tolerance_mm;
-    (*j)["max_backtrack_mm"] = s.max_backtrack_mm;
-    for (const auto& [name, q] : {std::pair<const char*, const ScanQuality*>{"leg", &s.leg_quality},
-                                  std::pair<const char*, const ScanQuality*>{"stub", &s.stub_quality}}) {
-      (*j)[std::string(name) + "_scan"] = {{"noise_mm", q->noise_mm},
-                                           {"edge_mm", q->edge_mm},
-                                           {"curvature_radius_mm", q->curvature_per_mm > 0 ? 1.0 / q->curvature_per_mm : 0.0},
-                                           {"edge_angle_deg", q->edge_angle_deg}};
-    }
-    (*j)["refined_points"] = s.refined_points;
-    (*j)["min_crossing_deg"] = s.min_crossing_deg;
-    (*j)["facet_error_mm"] = s.facet_error_mm;
-    (*j)["leg_radius_mm"] = r.leg_radius_mm;
-    (*j)["stub_radius_mm"] = r.stub_radius_mm;
-    const ToolSafetyResult& safety = s.safety;
-    (*j)["safety"] = {{"ok", safety.ok},
-                      {"walls_checked", safety.walls_checked},
-                      {"groove_beyond_wall", violation(safety.groove_beyond_wall)},
-                      {"cut_tip_in_stub", violation(safety.cut_tip_in_stub)},
-                      {"cut_line_in_stub", violation(safety.cut_line_in_stub)},
-                      {"weld_tip_in_stub", violation(safety.weld_tip_in_stub)},
-                      {"weld_tip_in_leg", violation(safety.weld_tip_in_leg)},
-                      {"weld_line_in_material", violation(safety.weld_line_in_material)}};
-    if (!r.leg_marker_residuals_mm.empty()) (*j)["leg_markers"] = reference(r.leg_reference);
-    if (!r.stub_marker_residuals_mm.empty()) (*j)["stub_markers"] = reference(r.stub_reference);
-  }
-
   static void print_text(const TubeJointJobResult& r) {
     const TubeJointSolution& s = r.solution;
     std::printf("meshes        leg %zu faces, stub %zu faces\n", r.leg_faces, r.stub_faces);
@@ -285,14 +174,15 @@ class TubeJointCommand : public Command {
     }
     std::printf("scans         noise leg %.3f stub %.3f mm, edge leg %.2f stub %.2f mm\n", s.leg_quality.noise_mm,
                 s.stub_quality.noise_mm, s.leg_quality.edge_mm, s.stub_quality.edge_mm);
-    std::printf("curve         closed, one turn about the stub axis (%zu islands dropped; %zu vertices dropped as "
-                "backtracking, largest %.3f mm, tolerance %.3f mm)\n",
-                s.islands, s.dropped_vertices, s.max_backtrack_mm, s.backtrack_tolerance_mm);
+    std::printf(
+        "curve         closed, one turn about the stub axis (%zu islands dropped; %zu vertices dropped as "
+        "backtracking, largest %.3f mm, tolerance %.3f mm)\n",
+        s.islands, s.dropped_vertices, s.max_backtrack_mm, s.backtrack_tolerance_mm);
     std::printf("path          %zu points (%zu refined), length %.3f mm, step min %.3f max %.3f mm%s\n",
                 s.path.points.size(), s.refined_points, s.path.length_mm, s.path.min_step_mm, s.path.max_step_mm,
                 s.path.smoothed ? ", smoothed" : "");
     std::printf("tools         %s\n", s.safety.walls_checked ? "clear of the walls (tips and approach lines checked)"
-                                                               : "walls not checked (give --wall-thickness)");
+                                                             : "walls not checked (give --wall-thickness)");
     std::printf("time          %.3f s in all\n", s.total_seconds);
     for (const std::string& path : r.written) std::printf("wrote         %s\n", path.c_str());
   }

@@ -8,6 +8,7 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/weld_layers.h"
+#include "conform/pipelines/weld_layers_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -18,7 +19,8 @@ class WeldLayersCommand : public Command {
   void configure(CLI::App& c) override {
     c.add_option("--eroded", o_.eroded_path, "Eroded grid CSV row,col,x_mm,y_mm,z_mm (full rectangular grid); required")
         ->required();
-    CLI::Option* reference = c.add_option("--reference", o_.reference_path, "Reference (original) grid CSV, same columns");
+    CLI::Option* reference =
+        c.add_option("--reference", o_.reference_path, "Reference (original) grid CSV, same columns");
     CLI::Option* border = c.add_flag("--reference-from-border", from_border_,
                                      "No reference file: rebuild it as the Coons patch of the eroded grid's border "
                                      "(the damage must stay clear of the border)");
@@ -61,7 +63,7 @@ class WeldLayersCommand : public Command {
     const WeldLayersJobResult job = run_weld_layers(o_);
     const WeldLayerResult& w = job.weld;
     if (json_) {
-      print_json(to_json(job));
+      print_json(weld_layers_json(o_, job));
     } else {
       print_text(job);
     }
@@ -74,64 +76,6 @@ class WeldLayersCommand : public Command {
   }
 
  private:
-  nlohmann::json to_json(const WeldLayersJobResult& job) const {
-    const WeldLayerResult& w = job.weld;
-    nlohmann::json rims = nlohmann::json::array();
-    for (const IntersectionCurve& c : w.rims) {
-      rims.push_back({{"points", c.points.size()}, {"length_mm", c.length_mm()}, {"closed", c.closed},
-                      {"closed_along_border", !c.closed}});
-    }
-    const DamageMap& d = w.damage;
-    nlohmann::json craters = nlohmann::json::array();
-    for (const DamageRegion& r : d.regions) {
-      craters.push_back({{"id", r.id}, {"nodes", r.nodes}, {"area_mm2", r.area_mm2}, {"volume_mm3", r.volume_mm3},
-                         {"max_depth_mm", r.max_depth_mm}, {"deepest_mm", {r.deepest.x(), r.deepest.y(), r.deepest.z()}},
-                         {"deepest_row", r.deepest_row}, {"deepest_col", r.deepest_col}, {"at_border", r.at_border}});
-    }
-    nlohmann::json bias = {{"offset_mm", d.bias_offset_mm}, {"tilt_deg", d.bias_tilt_deg}, {"span_mm", d.bias_span_mm},
-                           {"significant", d.bias_significant}, {"removed", d.bias_removed}, {"mode", bias_}};
-    return {{"ok", w.ok},
-            {"termination", w.termination},
-            {"warnings", w.warnings},
-            {"craters", craters},
-            {"bias", bias},
-            {"outward_sign", d.outward_sign},
-            {"side_from_data", d.side_from_data},
-            {"side_ratio", std::isfinite(d.side_ratio) ? nlohmann::json(d.side_ratio) : nlohmann::json(nullptr)},
-            {"off_reference_nodes", d.off_reference},
-            {"damage_coverage_pct", w.damage_coverage_pct},
-            {"paths_per_layer", w.paths_per_layer},
-            {"border_rims", w.border_rims},
-            {"regions_without_rim", w.regions_without_rim},
-            {"cusps_removed", w.cusps_removed},
-            {"max_paths_reached", w.max_paths_reached},
-            {"path_crossings", w.path_crossings},
-            {"crossings_cut", w.crossings_cut},
-            {"intersection_box_pairs", w.box_pairs},
-            {"layers", w.layers},
-            {"paths", w.paths.size()},
-            {"half_step_paths", w.half_step_paths},
-            {"total_length_mm", w.total_length_mm},
-            {"spacing_error_pct_max", w.spacing_error_pct_max},
-            {"chord_error_mm_max", w.chord_error_mm_max},
-            {"coverage_pct_min", w.coverage_pct_min},
-            {"coverage_pct_by_layer", w.coverage_pct},
-            {"noise_mm", w.noise_mm},
-            {"depth_threshold_mm", w.depth_threshold_mm},
-            {"depth_threshold_estimated", w.threshold_estimated},
-            {"max_depth_mm", w.max_depth_mm},
-            {"rims", rims},
-            {"open_curves", w.open_curves},
-            {"loops_removed", w.loops_removed},
-            {"newton_offsets", w.newton_offsets},
-            {"bead_spacing_mm", o_.weld.bead_spacing_mm},
-            {"layer_height_mm", o_.weld.layer_height_mm},
-            {"chord_error_mm", o_.weld.chord_error_mm},
-            {"torch_distance_mm", o_.weld.torch_distance_mm},
-            {"reference", from_border_ ? "coons patch of the eroded border" : o_.reference_path},
-            {"out", job.out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.out_path)}};
-  }
-
   void print_text(const WeldLayersJobResult& job) const {
     const WeldLayerResult& w = job.weld;
     std::printf("grids         eroded %d x %d, reference %d x %d\n", job.eroded_rows, job.eroded_cols,
@@ -146,15 +90,16 @@ class WeldLayersCommand : public Command {
                 d.side_from_data ? "from the data" : "given");
     std::printf("craters       %zu\n", d.regions.size());
     for (const DamageRegion& r : d.regions) {
-      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s\n", r.id, r.max_depth_mm, r.deepest.x(),
-                  r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
+      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s\n", r.id, r.max_depth_mm,
+                  r.deepest.x(), r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
     }
     std::printf("rims          %zu (%zu closed along the border)", w.rims.size(), w.border_rims);
     for (std::size_t k = 0; k < w.rims.size() && k < 6; ++k) std::printf(" (%.3f mm)", w.rims[k].length_mm());
     if (w.rims.size() > 6) std::printf(" ...");
     std::printf(", %zu open pieces\n", w.open_curves);
     if (w.layers == 0) return;
-    std::printf("damage cover  %.2f %% (damaged nodes within half a bead width of a layer-1 path)\n", w.damage_coverage_pct);
+    std::printf("damage cover  %.2f %% (damaged nodes within half a bead width of a layer-1 path)\n",
+                w.damage_coverage_pct);
     std::printf("layers        %d, paths %zu (%zu half-step paths before clipping)\n", w.layers, w.paths.size(),
                 w.half_step_paths);
     std::printf("length        %.3f mm in total\n", w.total_length_mm);

@@ -15,7 +15,8 @@ build_dir=${1:-build}
 shift || true
 
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libpcl-dev libceres-dev libopencv-dev
-          libgtest-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev)
+          libgtest-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed)  # python/ (docs/python.md)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

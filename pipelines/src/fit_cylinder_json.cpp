@@ -1,0 +1,41 @@
+#include "conform/pipelines/fit_cylinder_json.h"
+
+#include "conform/pipelines/json_values.h"
+
+namespace conform {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+double degrees(double rad) { return rad / kPi * 180.0; }
+
+}  // namespace
+
+nlohmann::json fit_cylinder_json(const FitCylinderJobResult& job) {
+  const CylinderFitResult& f = job.fit;
+  return {{"input", job.input_path},
+          {"points", job.points},
+          {"normals", to_string(job.normals)},
+          {"ok", f.ok},
+          {"converged", f.converged},
+          {"failure", to_string(f.failure)},
+          {"termination", f.termination},
+          {"axis_point_mm", json_of(f.cylinder.axis_point)},
+          {"axis_direction", json_of(f.cylinder.axis_direction)},
+          {"radius_mm", f.cylinder.radius_mm},
+          {"rms_mm", f.rms_mm},
+          {"inliers", f.inliers.size()},
+          {"inlier_fraction", f.inlier_fraction},
+          {"radius_std_mm", f.radius_std_mm},
+          {"axis_angle_std_deg", degrees(f.axis_angle_std_rad)},
+          {"axis_point_std_mm", f.axis_point_std_mm},
+          {"noise_sigma_mm", f.noise_sigma_mm},
+          {"threshold_mm", f.threshold_mm},
+          {"arc_deg", degrees(f.arc_rad)},
+          {"side", to_string(f.side)},
+          {"ransac_iterations", f.ransac_iterations},
+          {"refine_rounds", f.refine_rounds},
+          {"solver_iterations", f.solver_iterations},
+          {"out", json_path_or_null(job.out_path)}};
+}
+
+}  // namespace conform

@@ -1,0 +1,115 @@
+"""conform for Python: the jobs of the `conform` CLI on paths, numpy arrays or what `conform.read` returns.
+
+Every job runs the pipeline the CLI runs (same options, same defaults, same messages, same numbers) and returns a
+`Result` whose fields are the keys of the CLI's `--json` output, plus per-point numpy arrays aligned with the input
+(NaN where unmatched). Bad input raises `conform.Error` with the CLI's message. See docs/python.md.
+"""
+
+import json as _json
+
+import numpy as _np
+
+from . import _conform
+from ._conform import Error, Geometry, read
+
+__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
+
+
+class Result:
+    """A job's answer: one attribute per key of the CLI's JSON, plus the job's arrays.
+
+    Transforms (4x4 lists in the JSON, e.g. T_ref_scan) are (4, 4) numpy arrays here; `to_dict()` gives the JSON's
+    own values. `arrays` names the per-point numpy arrays (e.g. deviation_mm); `warnings` what the job warned about
+    (the CLI prints them on stderr).
+    """
+
+    def __init__(self, job, values, arrays):
+        self.job = job
+        self._values = values
+        self.warnings = list(arrays.pop("warnings", []))
+        self.arrays = tuple(arrays)
+        for key, value in values.items():
+            if key.startswith("T_") and value is not None:
+                value = _np.asarray(value, dtype=float)
+            setattr(self, key, value)
+        for key, value in arrays.items():
+            setattr(self, key, value)
+
+    def to_dict(self):
+        """The CLI's JSON for the same inputs, as a dict (a deep copy)."""
+        return _json.loads(_json.dumps(self._values))
+
+    def __repr__(self):
+        shown = ", ".join(f"{k}={self._values[k]!r}" for k in list(self._values)[:6])
+        return f"<conform.Result {self.job}: {shown}, ...>"
+
+
+def _result(job, answer):
+    text, arrays, in_memory = answer
+    values = _json.loads(text)
+    for key in in_memory:  # a temporary file named by the JSON: the input was given in memory
+        values[key] = None
+    return Result(job, values, dict(arrays))
+
+
+def compare(scan, reference, **options):
+    """`conform compare`: signed deviation of each scan point from the reference surface (mm), statistics.
+
+    scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options: transform (path or
+    (4, 4) T_ref_scan), tolerance, out_deviation, out_histogram, units, progress (callable(stage, fraction)).
+    Arrays: deviation_mm (N,), closest_mm (N, 3), NaN where unmatched.
+    """
+    return _result("compare", _conform.compare(scan, reference, **options))
+
+
+def pose_error(transform_a, transform_b, **options):
+    """`conform pose-error`: rotation (deg) and translation (mm) between two transforms (paths or (4, 4) arrays)."""
+    return _result("pose_error", _conform.pose_error(transform_a, transform_b, **options))
+
+
+def fit_cylinder(input, **options):
+    """`conform fit-cylinder`: axis, radius, inliers of a tube scan. Arrays: inlier (N,) bool."""
+    return _result("fit_cylinder", _conform.fit_cylinder(input, **options))
+
+
+def saddle(**options):
+    """`conform saddle`: the saddle weld path. Arrays: theta_rad, position_mm (N, 3), pose_rad, step_mm."""
+    return _result("saddle", _conform.saddle(**options))
+
+
+def weld_layers(eroded, **options):
+    """`conform weld-layers`: crater rims and weld paths layer by layer. Arrays (the CSV's rows): layer, path,
+    points_mm (M, 3), normals (M, 3)."""
+    return _result("weld_layers", _conform.weld_layers(eroded, **options))
+
+
+def profile(edge, features, **options):
+    """`conform profile`: where to cut a deformed ship profile's features. Arrays (the CSV's rows): feature (index
+    into `features`), points_mm (M, 3), normals (M, 3), directions (M, 3)."""
+    return _result("profile", _conform.profile(edge, features, **options))
+
+
+def tube_joint(leg, stub, **options):
+    """`conform tube-joint`: cutting and welding paths of a stub on a leg, from their scans (paths, arrays or
+    Geometry). Options, named like the CLI's flags, defaults as the CLI's: pitch_deg, offset, protrusion (or
+    leg_pose: path or (4, 4) T_S_L), leg_markers, stub_markers, marker_tolerance, backtrack_tolerance,
+    max_facet_error, island_ratio, wall_thickness (mm, or [leg, stub]), step_deg or step_mm, smoothing,
+    smoothing_rms, groove_deg ([toe, side, heel, side]), groove_table, groove_interpolation, weld_angle_deg,
+    cut_standoff, weld_standoff, k_normals, k_refine, out_path, out_cut, out_weld, progress.
+    Arrays (the path's rows): phi_rad, points_mm, tangents, stub_normals, leg_normals, cut_directions,
+    weld_directions (M, 3), groove_rad, psi_rad."""
+    return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
+
+
+def generate_tube(out, **options):
+    """`conform generate tube`: a synthetic tube scan written to `out` (.ply/.stl) with its truth beside it. Options
+    as the CLI's flags: radius, length, arc_deg, arc_center_deg, inner, edge or vertices, axis_point, axis_direction,
+    azimuth_reference, ovality, ovality_azimuth_deg, seam_height, seam_width, seam_azimuth_deg, bump (a list of
+    [az_deg, z_mm, height_mm, radius_mm]), bow, bow_azimuth_deg, noise, noise_type, noise_direction, hole (a list of
+    [az_deg, z_mm, radius_mm]), holes, hole_radius, outliers, outlier_distance, seed, ascii, double, normals,
+    progress. Read the scan back with conform.read(out)."""
+    return _result("generate_tube", _conform.generate_tube(out, **options))
+
+
+# The jobs conform.batch can run, by the manifest's `job` column.
+JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}

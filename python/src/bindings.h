@@ -1,0 +1,59 @@
+#pragma once
+// What every job binding shares: result vectors handed to numpy without a copy, the JSON as the CLI prints it, and
+// running a job with the GIL released.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "inputs.h"
+
+namespace conform::python {
+
+static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "Vector3d rows are viewed as (N, 3) doubles");
+
+// A view over `values`, moved to the heap and freed with the array.
+template <class T>
+inline py::array owned(std::vector<T>&& values) {
+  auto* heap = new std::vector<T>(std::move(values));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>({static_cast<py::ssize_t>(heap->size())}, heap->data(), owner);
+}
+
+inline py::array owned(std::vector<Eigen::Vector3d>&& rows) {
+  auto* heap = new std::vector<Eigen::Vector3d>(std::move(rows));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<Eigen::Vector3d>*>(p); });
+  const py::ssize_t n = static_cast<py::ssize_t>(heap->size());
+  return py::array_t<double>({n, py::ssize_t{3}}, heap->empty() ? nullptr : heap->front().data(), owner);
+}
+
+// The JSON as the CLI prints it (bad UTF-8 replaced), for json.loads on the Python side.
+inline std::string text(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// What a job returns to __init__.py: the JSON text, the arrays, and the JSON keys naming inputs given in memory.
+inline py::tuple answer(const nlohmann::json& j, const py::dict& arrays,
+                        const std::vector<std::string>& in_memory = {}) {
+  return py::make_tuple(text(j), arrays, in_memory);
+}
+
+template <class Run>
+auto released(const Progress& progress, Run&& run) {
+  auto result = [&] {
+    py::gil_scoped_release release;
+    return run();
+  }();
+  progress.rethrow();
+  return result;
+}
+
+// The path-planning jobs (toolpath_jobs.cpp): profile, tube_joint, weld_layers, generate_tube.
+void bind_toolpath_jobs(py::module_& m);
+
+}  // namespace conform::python

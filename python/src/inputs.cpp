@@ -1,0 +1,157 @@
+#include "inputs.h"
+
+#include <stdlib.h>  // mkdtemp
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <system_error>
+
+#include <pybind11/numpy.h>
+
+#include "conform/core/error.h"
+#include "conform/core/io.h"
+#include "conform/core/transform_io.h"
+
+namespace conform::python {
+namespace {
+
+using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using FaceRows = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>;
+
+std::string shape_text(const py::array& a) {
+  std::string text = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) text += (i ? ", " : "") + std::to_string(a.shape(i));
+  return text + (a.ndim() == 1 ? ",)" : ")");
+}
+
+std::vector<Eigen::Vector3d> rows_of(const py::handle& value, const std::string& what) {
+  const Rows a = Rows::ensure(value);
+  if (!a) throw Error(what + ": not a path, a conform.Geometry or a numeric array");
+  if (a.ndim() != 2 || a.shape(1) != 3) throw Error(what + ": expected an (N, 3) array, got shape " + shape_text(a));
+  std::vector<Eigen::Vector3d> rows(static_cast<std::size_t>(a.shape(0)));
+  const double* data = a.data();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rows[i] = Eigen::Vector3d(data[3 * i], data[3 * i + 1], data[3 * i + 2]);
+  return rows;
+}
+
+std::vector<Face> faces_of(const py::handle& value, const std::string& what) {
+  const FaceRows a = FaceRows::ensure(value);
+  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw Error(what + ": faces must be an (F, 3) integer array");
+  std::vector<Face> faces(static_cast<std::size_t>(a.shape(0)));
+  const std::int32_t* data = a.data();
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = {data[3 * i], data[3 * i + 1], data[3 * i + 2]};
+  return faces;
+}
+
+bool is_path(const py::handle& value) { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
+
+}  // namespace
+
+std::string path_of(const py::handle& value) {
+  if (value.is_none()) return "";
+  if (!is_path(value)) throw Error("expected a path (str or os.PathLike)");
+  return py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+}
+
+Inputs::~Inputs() {
+  if (directory_.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove_all(directory_, ignored);
+}
+
+std::string Inputs::temporary(const std::string& name) {
+  if (directory_.empty()) {
+    std::string pattern = (std::filesystem::temp_directory_path() / "conform-py-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw Error("cannot create a temporary directory in " + pattern);
+    directory_ = pattern;
+  }
+  written_.push_back((std::filesystem::path(directory_) / name).string());
+  return written_.back();
+}
+
+bool Inputs::in_memory(const std::string& path) const {
+  return std::find(written_.begin(), written_.end(), path) != written_.end();
+}
+
+std::string Inputs::geometry(const py::handle& value, const char* what) {
+  if (value.is_none()) return "";
+  if (is_path(value)) return path_of(value);
+  WriteOptions exact;
+  exact.double_precision = true;
+  const std::string path = temporary(std::string(what) + ".ply");
+  if (py::isinstance<Geometry>(value)) {
+    write_mesh(path, value.cast<const Geometry&>().mesh, exact);
+    return path;
+  }
+  Mesh mesh;
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    const py::sequence pair = value.cast<py::sequence>();
+    if (pair.size() != 2) throw Error(std::string(what) + ": give (vertices, faces), an (N, 3) array or a path");
+    mesh.vertices = rows_of(pair[0], std::string(what) + " vertices");
+    mesh.faces = faces_of(pair[1], std::string(what));
+  } else {
+    mesh.vertices = rows_of(value, what);
+  }
+  check_consistent(mesh, what);
+  write_mesh(path, mesh, exact);
+  return path;
+}
+
+std::string Inputs::transform(const py::handle& value, const char* what) {
+  if (value.is_none()) return "";
+  if (is_path(value)) return path_of(value);
+  const Rows a = Rows::ensure(value);
+  if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) {
+    throw Error(std::string(what) + ": expected a path or a (4, 4) array");
+  }
+  Eigen::Isometry3d T;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) T.matrix()(r, c) = a.at(r, c);
+  }
+  const std::string path = temporary(std::string(what) + ".txt");
+  write_transform(path, T);
+  return path;
+}
+
+struct Progress::State {
+  py::object callback;
+  std::mutex mutex;
+  std::exception_ptr error;
+};
+
+Progress::Progress(const py::object& callback) {
+  if (callback.is_none()) return;
+  // Released with the GIL held, whichever thread drops the last reference.
+  state_ = std::shared_ptr<State>(new State{callback, {}, {}}, [](State* s) {
+    py::gil_scoped_acquire gil;
+    delete s;
+  });
+}
+
+ProgressFn Progress::function() const {
+  if (!state_) return {};
+  std::shared_ptr<State> state = state_;
+  return [state](std::string_view stage, double fraction) {
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      if (state->error) return;
+    }
+    py::gil_scoped_acquire gil;
+    try {
+      state->callback(std::string(stage), fraction);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      if (!state->error) state->error = std::current_exception();
+    }
+  };
+}
+
+void Progress::rethrow() const {
+  if (state_ && state_->error) std::rethrow_exception(state_->error);
+}
+
+}  // namespace conform::python

@@ -1,0 +1,211 @@
+// conform._conform: the jobs of the `conform` CLI for Python (python/conform/__init__.py wraps them). Each call maps
+// its keyword arguments (the CLI's option names, defaults read from the pipelines' Options) onto the same pipeline
+// the CLI runs, with the GIL released, and returns (the CLI's JSON as text, per-point arrays). Arrays are views over
+// the result's own vectors (moved, not copied), and over the Geometry conform.read returns. The measuring jobs
+// are here, the path-planning ones and the generators in toolpath_jobs.cpp.
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "../../apps/deviation_colours.h"
+#include "../../apps/deviation_histogram.h"
+#include "bindings.h"
+#include "conform/core/error.h"
+#include "conform/core/io.h"
+#include "conform/core/units.h"
+#include "conform/pipelines/compare_json.h"
+#include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/pose_error_json.h"
+#include "conform/pipelines/saddle_json.h"
+#include "inputs.h"
+
+namespace conform::python {
+namespace {
+
+std::shared_ptr<Geometry> job_read(const py::object& path_value, const std::string& units) {
+  auto geometry = std::make_shared<Geometry>();
+  geometry->path = path_of(path_value);
+  const double mm_per_unit = millimetres_per_unit(units);
+  py::gil_scoped_release release;
+  ReadReport report;
+  geometry->mesh = read_geometry(geometry->path, {}, &report);
+  if (mm_per_unit != 1.0) scale_in_place(geometry->mesh, mm_per_unit);
+  geometry->warnings = report.warnings;
+  return geometry;
+}
+
+py::array rows_view(const py::object& self, std::vector<Eigen::Vector3d>& rows) {
+  const py::ssize_t n = static_cast<py::ssize_t>(rows.size());
+  return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(Eigen::Vector3d)}, py::ssize_t{sizeof(double)}},
+                             rows.empty() ? nullptr : rows.front().data(), self);
+}
+
+py::array faces_view(const py::object& self, std::vector<Face>& faces) {
+  const py::ssize_t n = static_cast<py::ssize_t>(faces.size());
+  return py::array_t<std::int32_t>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(Face)}, py::ssize_t{sizeof(std::int32_t)}},
+                                   faces.empty() ? nullptr : faces.front().data(), self);
+}
+
+py::tuple job_compare(const py::object& scan, const py::object& reference, const py::object& transform,
+                      std::optional<double> tolerance, const py::object& out_deviation, const py::object& out_histogram,
+                      const std::string& units, const py::object& progress_callback) {
+  Inputs inputs;
+  CompareOptions options;
+  options.scan_path = inputs.geometry(scan, "scan");
+  options.reference_path = inputs.geometry(reference, "reference");
+  options.transform_path = inputs.transform(transform, "transform");
+  options.mm_per_unit = millimetres_per_unit(units);
+  options.tolerance_mm = tolerance;
+  options.out_deviation_path = path_of(out_deviation);
+  options.out_histogram_path = path_of(out_histogram);
+  options.colour = app::deviation_colour;
+  const std::string title = "Deviation of " + std::filesystem::path(options.scan_path).filename().string() + " from " +
+                            std::filesystem::path(options.reference_path).filename().string();
+  options.histogram = [title](const std::vector<double>& d, const DeviationStatistics& s) {
+    return app::deviation_histogram_png(d, s, title);
+  };
+  const Progress progress(progress_callback);
+  options.progress = progress.function();
+  CompareResult result = released(progress, [&] { return run_compare(options); });
+  const nlohmann::json j = compare_json(options, result, units);
+  py::dict arrays;
+  arrays["warnings"] = py::cast(result.warnings);
+  arrays["deviation_mm"] = owned(std::move(result.deviation.deviation_mm));
+  arrays["closest_mm"] = owned(std::move(result.deviation.closest));
+  std::vector<std::string> in_memory;
+  if (inputs.in_memory(options.scan_path)) in_memory.push_back("scan");
+  if (inputs.in_memory(options.reference_path)) in_memory.push_back("reference");
+  if (inputs.in_memory(options.transform_path)) in_memory.push_back("transform");
+  return answer(j, arrays, in_memory);
+}
+
+py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
+  Inputs inputs;
+  PoseErrorOptions options;
+  options.path_a = inputs.transform(a, "transform_a");
+  options.path_b = inputs.transform(b, "transform_b");
+  options.mm_per_unit = millimetres_per_unit(units);
+  const PoseErrorResult result = run_pose_error(options);
+  std::vector<std::string> in_memory;
+  if (inputs.in_memory(options.path_a)) in_memory.push_back("transform_a");
+  if (inputs.in_memory(options.path_b)) in_memory.push_back("transform_b");
+  return answer(pose_error_json(options, result), py::dict(), in_memory);
+}
+
+py::tuple job_fit_cylinder(const py::object& input, double threshold, double min_radius,
+                           std::optional<double> max_radius, std::optional<std::vector<double>> axis,
+                           double axis_tolerance_deg, int normals_k, std::uint64_t seed, const py::object& out,
+                           const py::object& progress_callback) {
+  Inputs inputs;
+  FitCylinderJobOptions options;
+  options.input_path = inputs.geometry(input, "input");
+  options.fit.threshold_mm = threshold;
+  options.fit.min_radius_mm = min_radius;
+  if (max_radius) options.fit.max_radius_mm = *max_radius;
+  if (axis) {
+    if (axis->size() != 3) throw Error("--axis: give three numbers x y z");
+    options.fit.axis_prior = Eigen::Vector3d((*axis)[0], (*axis)[1], (*axis)[2]);
+    if (!(options.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
+  }
+  options.fit.axis_prior_tolerance_rad = axis_tolerance_deg / 180.0 * 3.141592653589793;
+  options.fit.normal_neighbors = normals_k;
+  options.fit.seed = seed;
+  options.out_path = path_of(out);
+  const Progress progress(progress_callback);
+  options.fit.progress = progress.function();
+  FitCylinderJobResult result = released(progress, [&] { return run_fit_cylinder(options); });
+  const nlohmann::json j = fit_cylinder_json(result);
+  std::vector<std::uint8_t> inlier(result.points, 0);
+  for (int i : result.fit.inliers) inlier[static_cast<std::size_t>(i)] = 1;
+  py::dict arrays;
+  arrays["warnings"] = py::cast(result.warnings);
+  arrays["inlier"] = owned(std::move(inlier)).attr("astype")("bool");
+  return answer(j, arrays,
+                inputs.in_memory(options.input_path) ? std::vector<std::string>{"input"} : std::vector<std::string>{});
+}
+
+py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pitch_deg, double offset,
+                     std::optional<double> step_deg, std::optional<double> speed, std::optional<double> period,
+                     const py::object& out) {
+  SaddleRequest request;
+  request.leg_radius_mm = R;
+  request.pipe_radius_mm = r;
+  request.pitch_deg = pitch_deg;
+  request.offset_mm = offset;
+  request.right_angle_pose_deg = right_angle_pose_deg;
+  if (step_deg && (speed || period)) throw Error("saddle: give --step-deg or --speed with --period, not both");
+  if (speed.has_value() != period.has_value()) throw Error("saddle: --speed and --period go together");
+  request.step_deg = step_deg;
+  request.speed_mm_per_s = speed;
+  request.period_s = period;
+  request.out_path = path_of(out);
+  const SaddleJobOptions options = saddle_job_options(request);
+  SaddleJobResult result = [&] {
+    py::gil_scoped_release release;
+    return run_saddle(options);
+  }();
+  const nlohmann::json j = saddle_json(request, result);
+  std::vector<double> theta, pose, step;
+  std::vector<Eigen::Vector3d> position;
+  for (const SaddlePoint& p : result.saddle.points) {
+    theta.push_back(p.theta_rad);
+    position.push_back(p.position);
+    pose.push_back(p.pose_rad);
+    step.push_back(p.step_mm);
+  }
+  py::dict arrays;
+  arrays["theta_rad"] = owned(std::move(theta));
+  arrays["position_mm"] = owned(std::move(position));
+  arrays["pose_rad"] = owned(std::move(pose));
+  arrays["step_mm"] = owned(std::move(step));
+  return answer(j, arrays);
+}
+
+}  // namespace
+}  // namespace conform::python
+
+PYBIND11_MODULE(_conform, m) {
+  using namespace conform;
+  using namespace conform::python;
+  using py::arg;
+  m.doc() = "conform's jobs (the CLI's pipelines); use the `conform` package, which wraps this module";
+  py::register_exception<Error>(m, "Error", PyExc_ValueError);
+
+  py::class_<Geometry, std::shared_ptr<Geometry>>(m, "Geometry", "A mesh or cloud as read: mm, views, not copies")
+      .def_property_readonly("points",
+                             [](py::object self) { return rows_view(self, self.cast<Geometry&>().mesh.vertices); })
+      .def_property_readonly("normals",
+                             [](py::object self) { return rows_view(self, self.cast<Geometry&>().mesh.normals); })
+      .def_property_readonly("faces",
+                             [](py::object self) { return faces_view(self, self.cast<Geometry&>().mesh.faces); })
+      .def_readonly("warnings", &Geometry::warnings)
+      .def_readonly("path", &Geometry::path)
+      .def("__len__", [](const Geometry& g) { return g.mesh.vertices.size(); })
+      .def("__repr__", [](const Geometry& g) {
+        return "<conform.Geometry " + std::to_string(g.mesh.vertices.size()) + " points, " +
+               std::to_string(g.mesh.faces.size()) + " faces, normals: " + (g.mesh.has_normals() ? "yes" : "no") + ">";
+      });
+
+  m.def("read", &job_read, arg("path"), arg("units") = "mm");
+  m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
+        arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
+        arg("out_histogram") = py::none(), arg("units") = "mm", arg("progress") = py::none());
+  m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
+  const FitCylinderJobOptions cylinder;
+  m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
+        arg("min_radius") = cylinder.fit.min_radius_mm, arg("max_radius") = py::none(), arg("axis") = py::none(),
+        arg("axis_tolerance_deg") = 10.0, arg("normals_k") = cylinder.fit.normal_neighbors,
+        arg("seed") = cylinder.fit.seed, arg("out") = py::none(), arg("progress") = py::none());
+  const SaddleRequest saddle_defaults;
+  m.def("saddle", &job_saddle, py::kw_only(), arg("R"), arg("r"), arg("right_angle_pose_deg"),
+        arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,
+        arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none());
+  bind_toolpath_jobs(m);
+}
