@@ -60,12 +60,12 @@ void run_part(PartKind kind, CoarseMethod method) {
   EXPECT_EQ(successes, kTrials) << part.name << " " << to_string(method);
 }
 
-TEST(CoarsePerturbation, TubePatchPca) { run_part(PartKind::kTubePatch, CoarseMethod::kPca); }
-TEST(CoarsePerturbation, TubePatchFpfh) { run_part(PartKind::kTubePatch, CoarseMethod::kFpfh); }
-TEST(CoarsePerturbation, BoxPartPca) { run_part(PartKind::kBox, CoarseMethod::kPca); }
-TEST(CoarsePerturbation, BoxPartFpfh) { run_part(PartKind::kBox, CoarseMethod::kFpfh); }
-TEST(CoarsePerturbation, FreeformPca) { run_part(PartKind::kFreeform, CoarseMethod::kPca); }
-TEST(CoarsePerturbation, FreeformFpfh) { run_part(PartKind::kFreeform, CoarseMethod::kFpfh); }
+TEST(CoarsePerturbationMatrix, TubePatchPca) { run_part(PartKind::kTubePatch, CoarseMethod::kPca); }
+TEST(CoarsePerturbationMatrix, TubePatchFpfh) { run_part(PartKind::kTubePatch, CoarseMethod::kFpfh); }
+TEST(CoarsePerturbationMatrix, BoxPartPca) { run_part(PartKind::kBox, CoarseMethod::kPca); }
+TEST(CoarsePerturbationMatrix, BoxPartFpfh) { run_part(PartKind::kBox, CoarseMethod::kFpfh); }
+TEST(CoarsePerturbationMatrix, FreeformPca) { run_part(PartKind::kFreeform, CoarseMethod::kPca); }
+TEST(CoarsePerturbationMatrix, FreeformFpfh) { run_part(PartKind::kFreeform, CoarseMethod::kFpfh); }
 
 }  // namespace
 }  // namespace conform

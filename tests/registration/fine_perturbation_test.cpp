@@ -64,9 +64,9 @@ void run_part(PartKind kind) {
   }
 }
 
-TEST(FinePerturbation, TubePatch) { run_part(PartKind::kTubePatch); }
-TEST(FinePerturbation, BoxPart) { run_part(PartKind::kBox); }
-TEST(FinePerturbation, FreeformSurface) { run_part(PartKind::kFreeform); }
+TEST(FinePerturbationMatrix, TubePatch) { run_part(PartKind::kTubePatch); }
+TEST(FinePerturbationMatrix, BoxPart) { run_part(PartKind::kBox); }
+TEST(FinePerturbationMatrix, FreeformSurface) { run_part(PartKind::kFreeform); }
 
 }  // namespace
 }  // namespace conform
