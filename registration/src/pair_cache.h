@@ -5,8 +5,9 @@
 //   Nearest reference point: searched at `a`, nearest distance d1, second-nearest d2; now at x, |x - a| = m. The
 //   triangle inequality gives |x - p1| <= d1 + m and |x - p| >= d2 - m for every other p: while 2 m < d2 - d1 the
 //   nearest is still p1 (a margin covers float rounding, so no near-tie is decided here).
-//   Closest surface point: searched at `a`, distance d1, keeping the triangles within d1 + 2 h (h = max(d1, 1e-3 mm)):
-//   while |x - a| <= h, x's closest point is on one of them (TriangleIndex::closest_with_slots).
+//   Closest surface point: searched at `a`, distance d1, keeping the triangles within d1 + 2 h (h >= d1, 1 um):
+//   while |x - a| <= h, x's closest point is on one of them (TriangleIndex::closest_with_slots). Kept only once the
+//   point moves little against its distance: early, big steps would leave them at once.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,9 +35,13 @@ class PairCache {
 
  private:
   static constexpr std::size_t kMaxSlots = 16;  // triangles kept per point; more: search every time
+  static constexpr double kNoAnchor = -2.0;      // reach_: never searched
+  static constexpr double kNoSlots = -1.0;       // reach_: searched, nothing to reuse
 
   std::vector<Eigen::Vector3d> anchor_;  // where point i was last searched
   std::vector<double> reach_;            // how far it may move from there and keep its answer, mm; < 0: search
+  std::vector<double> distance_;         // closest surface point: its distance then, mm
+  std::vector<double> crowded_;          // the distance at which more than kMaxSlots triangles were in reach, mm
   std::vector<int> index_;               // nearest point: its index then
   std::vector<std::int32_t> slots_;      // closest surface point: kMaxSlots per point
   std::vector<std::uint8_t> slot_count_;
