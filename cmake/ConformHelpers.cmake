@@ -27,12 +27,16 @@ if(CONFORM_SANITIZE)
   target_compile_definitions(conform_warnings INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
-# conform_add_library(<module> DEPS <targets...>)
+# conform_add_library(<module> DEPS <targets...> [PRIVATE_DEPS <targets...>] [EXCLUDE <src/ file names...>])
 # One library per module folder: include/conform/<module>/*.h is the public API, src/*.cpp the implementation.
 # New source files are picked up without editing CMake (CONFIGURE_DEPENDS), so a new file touches nothing else.
+# EXCLUDE leaves files of src/ to a plugin module (conform_add_plugin).
 function(conform_add_library module)
-  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS;EXCLUDE" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  foreach(excluded ${ARG_EXCLUDE})
+    list(REMOVE_ITEM sources ${CMAKE_CURRENT_SOURCE_DIR}/src/${excluded})
+  endforeach()
   add_library(conform_${module} STATIC ${sources})
   add_library(conform::${module} ALIAS conform_${module})
   target_include_directories(conform_${module} PUBLIC
@@ -42,6 +46,32 @@ function(conform_add_library module)
   set_target_properties(conform_${module} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   install(TARGETS conform_${module} ARCHIVE DESTINATION lib)
   install(DIRECTORY include/conform DESTINATION include)
+endfunction()
+
+# conform_add_plugin(<name> SOURCES <files...> DEPS <targets...>)
+# A shared module lib<name>.so that conform opens on first use (core/include/conform/core/plugin.h), so that a heavy
+# library linked only into it costs start-up time only in the runs that call it. Written beside the `conform`
+# executable and installed in lib/; `conform` and every test depend on it (CONFORM_PLUGINS), so building them builds
+# it. conform's static libraries linked in stay private to it: only its extern "C" entry points are exported.
+function(conform_add_plugin name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} conform_warnings)
+  set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}
+                                           CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  target_link_options(${name} PRIVATE -Wl,--exclude-libs,ALL -Wl,--as-needed)
+  install(TARGETS ${name} LIBRARY DESTINATION lib)
+  set_property(GLOBAL APPEND PROPERTY CONFORM_PLUGINS ${name})
+endfunction()
+
+# conform_depend_on_plugins(<targets...>): building a target builds every plugin it may open at run time.
+function(conform_depend_on_plugins)
+  get_property(plugins GLOBAL PROPERTY CONFORM_PLUGINS)
+  if(plugins)
+    foreach(target ${ARGN})
+      add_dependencies(${target} ${plugins})
+    endforeach()
+  endif()
 endfunction()
 
 # conform_add_tests(<module> DEPS <targets...>)
@@ -57,6 +87,7 @@ function(conform_add_tests module)
     target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main conform_warnings
                                             conform_test_support conform_pcl_all)
     target_compile_definitions(${target} PRIVATE ${ARG_DEFINITIONS})
+    conform_depend_on_plugins(${target})
     gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
   endforeach()
 endfunction()

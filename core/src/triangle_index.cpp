@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -118,6 +119,67 @@ SurfacePoint TriangleIndex::closest(const Eigen::Vector3d& query, double max_dis
       if (n.count[c] == 0 && !pruned(d2[c], best.sq_distance)) stack[top++] = {n.ref[c], d2[c]};
     }
   }
+  return best;
+}
+
+namespace {
+
+// Appends the slots of the triangles within sqrt(r2) of `query` (by their double-precision closest points; a box is
+// never closer than the triangles it holds); false as soon as there are more than max_slots.
+bool collect_slots(const TriangleTree& tree, const Eigen::Vector3d& query, double r2, std::size_t max_slots,
+                   std::vector<std::int32_t>& slots) {
+  const auto leaf = [&](std::int32_t first, std::int32_t count) {
+    for (std::int32_t i = first; i < first + count; ++i) {
+      const TriangleTree::Triangle& t = tree.triangles[static_cast<std::size_t>(i)];
+      if (closest_point_on_triangle(query, t.a, t.b, t.c).sq_distance > r2) continue;
+      if (slots.size() == max_slots) return false;
+      slots.push_back(i);
+    }
+    return true;
+  };
+  if (box_sq_distance(tree.root_lo, tree.root_hi, query) > r2) return true;
+  if (tree.root_count > 0) return leaf(0, tree.root_count);
+  std::array<std::int32_t, detail::kMaxTreeDepth + 2> stack;
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const TriangleTree::Node& n = tree.nodes[static_cast<std::size_t>(stack[--top])];
+    for (int c = 0; c < 2; ++c) {
+      if (box_sq_distance(n.lo[c], n.hi[c], query) > r2) continue;
+      if (n.count[c] == 0) {
+        stack[top++] = n.ref[c];
+      } else if (!leaf(n.ref[c], n.count[c])) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+SurfacePoint TriangleIndex::closest_with_slots(const Eigen::Vector3d& query, double max_distance, double min_reach,
+                                               std::size_t max_slots, std::vector<std::int32_t>& slots,
+                                               double* reach) const {
+  slots.clear();
+  const SurfacePoint best = closest(query, max_distance);
+  const double distance = std::sqrt(best.sq_distance);
+  *reach = std::max(distance, min_reach);
+  if (!best.found() || !std::isfinite(*reach)) return best;
+  // Widened by far more than double rounding, so that no triangle the bound needs is left out.
+  const double r = distance + 2.0 * *reach;
+  if (!collect_slots(*impl_, query, r * r * (1.0 + 1e-9) + 1e-18, max_slots, slots)) slots.clear();
+  return best;
+}
+
+SurfacePoint TriangleIndex::closest_among(const Eigen::Vector3d& query, const std::int32_t* slots, std::size_t count,
+                                          double max_distance) const {
+  if (!query.allFinite()) throw Error("triangle index: the query point has a NaN or infinite coordinate");
+  if (!(max_distance >= 0.0)) throw Error("triangle index: the search distance must be >= 0 (or infinite)");
+  SurfacePoint best;
+  best.sq_distance = max_distance * max_distance;
+  // One triangle at a time through test_leaf: the same (squared distance, face) order as closest().
+  for (std::size_t k = 0; k < count; ++k) test_leaf(*impl_, slots[k], 1, query, best);
   return best;
 }
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include <Eigen/Geometry>  // cross(): defined there (it used to link only through PCL's sample_consensus)
+
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 

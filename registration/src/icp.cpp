@@ -90,9 +90,11 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
              const detail::PairRules& rules, double tolerance_scale, int max_iterations, std::vector<Pair>& pairs,
              Pass& pass, IcpResult& result) {
   const bool point_to_point = options.method == IcpMethod::kPointToPoint;
+  detail::PairCache cache;  // the last step's searches, reused where exact: late steps search almost nothing
+  cache.reset(points.size(), options.method == IcpMethod::kPointToSurface);
   while (result.iterations < max_iterations) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
-    detail::find_pairs(points, result.T_ref_scan, reference, rules, pairs);
+    detail::find_pairs(points, result.T_ref_scan, reference, rules, pairs, &cache);
     const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
     if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) {
       result.termination = IcpTermination::kTooFewCorrespondences;

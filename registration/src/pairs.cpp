@@ -14,10 +14,11 @@ constexpr std::ptrdiff_t kSerialBelow = 16384;
 constexpr int kChunk = 512;
 
 // Nearest reference point: the tree searches in float, the distance is then taken in double.
-void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm, Pair& pair) {
+void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm, Pair& pair,
+                   PairCache* cache, std::size_t i) {
   const Eigen::Vector3f qf = q.cast<float>();
   if (!qf.allFinite()) return;  // beyond float range: nothing of the reference can be near
-  const int j = reference.tree().nearest(qf);
+  const int j = cache != nullptr ? cache->nearest(reference.tree(), i, qf) : reference.tree().nearest(qf);
   if (j < 0) return;
   const auto index = static_cast<std::size_t>(j);
   pair.target = reference.points()[index];
@@ -27,8 +28,9 @@ void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, doub
 }
 
 void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm,
-                           Pair& pair) {
-  const SurfacePoint s = reference.surface().closest(q, max_distance_mm);
+                           Pair& pair, PairCache* cache, std::size_t i) {
+  const SurfacePoint s = cache != nullptr ? cache->closest(reference.surface(), i, q, max_distance_mm)
+                                          : reference.surface().closest(q, max_distance_mm);
   if (!s.found()) return;
   pair.target = s.point;
   pair.normal = reference.surface().normal_at(s);
@@ -39,7 +41,8 @@ void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d&
 }  // namespace
 
 void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3d& T_ref_scan,
-                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs) {
+                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs,
+                PairCache* cache) {
   const IcpMethod method = rules.method;
   const double max_distance_mm = rules.max_distance_mm;
   pairs.resize(scan.size());
@@ -51,9 +54,9 @@ void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3
     pair.q = T_ref_scan * scan[static_cast<std::size_t>(i)];
     if (!pair.q.allFinite()) continue;  // overflow: nothing to pair it with (and the searches would throw)
     if (method == IcpMethod::kPointToSurface) {
-      nearest_surface_point(reference, pair.q, max_distance_mm, pair);
+      nearest_surface_point(reference, pair.q, max_distance_mm, pair, cache, static_cast<std::size_t>(i));
     } else {
-      nearest_point(reference, pair.q, max_distance_mm, pair);
+      nearest_point(reference, pair.q, max_distance_mm, pair, cache, static_cast<std::size_t>(i));
     }
     if (!pair.found) continue;
     pair.residual = method == IcpMethod::kPointToPoint ? pair.distance : pair.normal.dot(pair.q - pair.target);

@@ -10,6 +10,7 @@
 
 #include "conform/registration/icp_options.h"
 #include "conform/registration/icp_reference.h"
+#include "pair_cache.h"
 
 namespace conform::detail {
 
@@ -29,8 +30,11 @@ struct PairRules {
 };
 
 // Pairs for every scan point at T_ref_scan (found = false beyond the distance). Parallel, order-independent.
+// `cache` (reset for this scan and method): each point's search is reused from the last call while that is exact
+// (pair_cache.h): the same pairs, without most of the searches.
 void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3d& T_ref_scan,
-                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs);
+                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs,
+                PairCache* cache = nullptr);
 
 // The found pairs kept after trimming to `overlap` x scan size (smallest distances first), ascending by index.
 std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap);

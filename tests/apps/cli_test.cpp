@@ -40,6 +40,18 @@ TEST(Cli, UnknownJobOrOptionIsBadUsage) {
   EXPECT_EQ(conform_cli({"info"}).exit_code, 2);  // the file is required
 }
 
+// Issue 13: `conform --help` took 0.05 s, mostly the loader binding PCL's features library (116k relocations) for
+// FPFH, which is now a plugin opened on first use (core/plugin.h). The loader's own log lists what a start loads.
+TEST(Cli, HelpLoadsNoHeavyLibrary) {
+  const auto r = test::run("/usr/bin/env", {"LD_DEBUG=libs", CONFORM_EXE, "--help"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_NE(r.err.find("libstdc++"), std::string::npos) << "no loader log: " << r.err.substr(0, 500);
+  for (const char* heavy : {"libpcl_features", "libpcl_filters", "libpcl_sample_consensus", "libpcl_search",
+                            "libconform_fpfh", "libvtk", "libopencv_imgcodecs"}) {
+    EXPECT_EQ(r.err.find(heavy), std::string::npos) << heavy << " is loaded at start-up";
+  }
+}
+
 TEST(Cli, VersionExitsZero) {
   const auto r = conform_cli({"--version"});
   EXPECT_EQ(r.exit_code, 0);

@@ -260,6 +260,56 @@ TEST(TriangleIndex, EqualsBruteForceOnASharedVertexMeshWithTies) {
   expect_matches_brute_force(field, queries, 1.0);
 }
 
+// closest_with_slots + closest_among (ICP's per-point cache): for a query moved anywhere within the reach, the same
+// answer as closest(), on a mesh with shared vertices and ties and on a triangle soup; more than max_slots: none.
+TEST(TriangleIndex, SlotsAnswerExactlyWithinTheirReach) {
+  std::mt19937_64 rng(11);
+  for (const Mesh& m : {height_field(20, 2.0, rng), triangle_soup(300, rng)}) {
+    const TriangleIndex index(m);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int reused = 0;
+    std::vector<V> anchors = random_queries(300, 0.0, 40.0, rng);
+    for (V& a : anchors) a.z() *= m.faces.size() == 800 ? 0.05 : 1.0;  // near the height field's surface
+    for (const V& anchor : anchors) {
+      for (double max_distance : {std::numeric_limits<double>::infinity(), 1.5}) {
+        std::vector<std::int32_t> slots;
+        double reach = 0.0;
+        const SurfacePoint at = index.closest_with_slots(anchor, max_distance, 0.3, 16, slots, &reach);
+        const SurfacePoint expected = index.closest(anchor, max_distance);
+        EXPECT_EQ(at.face, expected.face);
+        EXPECT_EQ(at.sq_distance, expected.sq_distance);
+        if (!at.found()) {
+          EXPECT_TRUE(slots.empty());
+          continue;
+        }
+        EXPECT_EQ(reach, std::max(0.3, std::sqrt(at.sq_distance)));
+        if (slots.empty()) continue;  // more than 16 triangles within reach
+        ++reused;
+        for (int k = 0; k < 20; ++k) {
+          V step(u(rng), u(rng), u(rng));
+          step *= reach * (k == 0 ? 1.0 : std::abs(u(rng))) / step.norm();  // up to the reach itself
+          const V q = anchor + step;
+          const SurfacePoint a = index.closest_among(q, slots.data(), slots.size(), max_distance);
+          const SurfacePoint b = index.closest(q, max_distance);
+          ASSERT_EQ(a.face, b.face) << q.transpose();
+          EXPECT_EQ(a.sq_distance, b.sq_distance);
+          EXPECT_EQ(a.point, b.point);
+        }
+      }
+    }
+    EXPECT_GT(reused, 10);  // the check above ran
+  }
+  // A fan of 20 triangles around one vertex: a query at it has all 20 within any reach, more than 8 slots.
+  Mesh fan;
+  fan.vertices.emplace_back(0, 0, 0);
+  for (int k = 0; k < 20; ++k) fan.vertices.emplace_back(std::cos(k * M_PI / 10), std::sin(k * M_PI / 10), 0.0);
+  for (std::int32_t k = 0; k < 20; ++k) fan.faces.push_back({0, 1 + k, 1 + (k + 1) % 20});
+  std::vector<std::int32_t> slots;
+  double reach = 0.0;
+  EXPECT_TRUE(TriangleIndex(fan).closest_with_slots(V(0, 0, 0.1), 5.0, 0.01, 8, slots, &reach).found());
+  EXPECT_TRUE(slots.empty());
+}
+
 TEST(TriangleIndex, TiesGoToTheLowerFaceIndex) {
   // The same triangle twice, and a query above its middle: both faces are equally close.
   Mesh m;

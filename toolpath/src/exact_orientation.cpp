@@ -4,6 +4,8 @@
 #include <limits>
 #include <vector>
 
+#include <Eigen/Geometry>  // cross(): defined there (it used to link only through PCL's sample_consensus)
+
 namespace conform {
 namespace {
 

@@ -9,8 +9,10 @@
 //                                                                       : -std::sqrt(s.sq_distance);
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -56,6 +58,17 @@ class TriangleIndex {
   // Throws conform::Error for a NaN/infinite query or a negative or NaN max_distance.
   SurfacePoint closest(const Eigen::Vector3d& query,
                        double max_distance = std::numeric_limits<double>::infinity()) const;
+
+  // For repeated queries near one place (ICP's late iterations move each point by micrometres): closest(query,
+  // max_distance), its reach r = max(its distance, min_reach) in *reach, and in `slots` every triangle within
+  // distance + 2 r of `query`, at most max_slots (slots is left empty when there are more, or when nothing was
+  // found). While a later query x stays within r of `query`, its closest surface point is on one of those triangles
+  // (the triangle inequality), and closest_among(x, slots, max_distance) returns exactly what closest(x,
+  // max_distance) would. Slots are this index's own handles for triangles, meaningful only to it.
+  SurfacePoint closest_with_slots(const Eigen::Vector3d& query, double max_distance, double min_reach,
+                                  std::size_t max_slots, std::vector<std::int32_t>& slots, double* reach) const;
+  SurfacePoint closest_among(const Eigen::Vector3d& query, const std::int32_t* slots, std::size_t count,
+                             double max_distance) const;
 
   // Outward normal at a closest point: the face normal inside a face, the angle-weighted pseudo-normal of the
   // vertex or edge otherwise (Baerentzen & Aanaes 2005), so that sign(dot(query - point, normal)) is the side of a

@@ -1,0 +1,405 @@
+// `conform align` as a user runs it (the whole process: start, reading the files, normals, coarse and fine
+// registration, writing the transform) against its peers in the same run, on issue 13's two pairs:
+//   fine: two independent 100k-point samplings of the ribbed plate (datasets/ribbed_plate.h, 0.02 mm noise),
+//         2 deg / 3.7 mm apart, clouds: conform (default method) against PCL 1.13's IterativeClosestPoint and
+//         Open3D's point-to-plane ICP and generalized ICP (reading the files and the normals included);
+//   mesh: a partial scan (65 % of the plate, 80k points, 0.02 mm noise) in another frame (40 deg, 37 mm away)
+//         against the plate's 306k-face height-field mesh (with a boss near a corner: see boss_height), coarse + fine: conform `--init fpfh` against Open3D's
+//         usual pipeline (voxel downsampling, normals, FPFH, RANSAC with mutual filter and the edge-length and distance
+//         checkers, then point-to-plane ICP, or generalized ICP, on all points; reading the files included).
+// Open3D runs in this process (no Python start-up, in its favour); conform as a child process (its start-up and file
+// reading in the figure). Wall-clock, best of --repeats runs (default 3); CPU is user + system of the best run.
+// Errors against the truth: the rotation angle of T_est T_truth^-1 and the distance the scan's centroid lands from
+// where the truth puts it. Ratios > 1 mean the peer is slower.
+// Usage: build/bench/align_peers_bench [--conform build/conform] [--baseline OTHER_CONFORM] [--repeats N] [--dir DIR]
+// (--baseline: another build of conform, e.g. before a change, timed in the same run.) On a shared machine run it
+// with OMP_NUM_THREADS=1 and compare the cpu column: every program then runs on one thread, and other jobs' load
+// inflates wall-clock time far more than CPU time.
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#include <open3d/geometry/KDTreeSearchParam.h>
+#include <open3d/geometry/PointCloud.h>
+#include <open3d/geometry/TriangleMesh.h>
+#include <open3d/io/PointCloudIO.h>
+#include <open3d/io/TriangleMeshIO.h>
+#include <open3d/pipelines/registration/CorrespondenceChecker.h>
+#include <open3d/pipelines/registration/Feature.h>
+#include <open3d/pipelines/registration/GeneralizedICP.h>
+#include <open3d/pipelines/registration/Registration.h>
+#include <open3d/pipelines/registration/TransformationEstimation.h>
+#include <open3d/utility/Logging.h>
+#include <pcl/registration/icp.h>
+#pragma GCC diagnostic pop
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "conform/core/io.h"
+#include "conform/core/mesh.h"
+#include "conform/core/transform_io.h"
+#include "conform/datasets/ribbed_plate.h"
+
+extern char** environ;
+
+namespace {
+
+namespace o3r = open3d::pipelines::registration;
+constexpr double kDeg = M_PI / 180.0;
+
+struct Timing {
+  double wall = std::numeric_limits<double>::infinity();
+  double cpu = 0.0;
+};
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double cpu_of(const rusage& u) {
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Runs `args` as a child process `repeats` times; exits the bench if it fails.
+Timing time_process(const std::vector<std::string>& args, int repeats) {
+  Timing best;
+  for (int r = 0; r < repeats; ++r) {
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    const double start = now();
+    pid_t pid = 0;
+    if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0) {
+      std::fprintf(stderr, "cannot run %s\n", argv[0]);
+      std::exit(2);
+    }
+    int status = 0;
+    rusage usage{};
+    wait4(pid, &status, 0, &usage);
+    const double wall = now() - start;
+    posix_spawn_file_actions_destroy(&actions);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      std::fprintf(stderr, "%s exited with %d\n", argv[0], WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    }
+    if (wall < best.wall) best = {wall, cpu_of(usage)};
+  }
+  return best;
+}
+
+template <typename Fn>
+Timing time_here(int repeats, Fn&& fn) {
+  Timing best;
+  for (int r = 0; r < repeats; ++r) {
+    rusage before{}, after{};
+    getrusage(RUSAGE_SELF, &before);
+    const double start = now();
+    fn();
+    const double wall = now() - start;
+    getrusage(RUSAGE_SELF, &after);
+    if (wall < best.wall) best = {wall, cpu_of(after) - cpu_of(before)};
+  }
+  return best;
+}
+
+struct Case {
+  std::string scan_file, reference_file;
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();  // T_ref_scan
+  Eigen::Vector3d scan_centroid = Eigen::Vector3d::Zero();  // scan frame
+};
+
+struct Row {
+  std::string name;
+  Timing time;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+};
+
+void print_row(const Case& c, const Row& row, const Row& conform_row) {
+  const Eigen::Isometry3d e = row.T * c.truth.inverse();
+  const double rotation = std::atan2(0.5 * Eigen::Vector3d(e(2, 1) - e(1, 2), e(0, 2) - e(2, 0), e(1, 0) - e(0, 1)).norm(),
+                                     0.5 * (e.linear().trace() - 1.0));
+  const double translation = (row.T * c.scan_centroid - c.truth * c.scan_centroid).norm();
+  std::printf("  %-50s %8.3f s %7.2fx %8.3f s %7.2fx  %9.5f deg %9.5f mm\n", row.name.c_str(), row.time.wall,
+              row.time.wall / conform_row.time.wall, row.time.cpu, row.time.cpu / conform_row.time.cpu,
+              rotation / kDeg, translation);
+  std::fflush(stdout);
+}
+
+Eigen::Isometry3d pose(double angle_deg, const Eigen::Vector3d& axis, const Eigen::Vector3d& t) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(angle_deg * kDeg, axis.normalized()).toRotationMatrix();
+  T.translation() = t;
+  return T;
+}
+
+conform::Cloud to_cloud(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T_out_in) {
+  conform::Cloud cloud;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3f q = (T_out_in * p).cast<float>();
+    cloud.points.push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
+  }
+  return cloud;
+}
+
+Eigen::Vector3d mean_of(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) m += p;
+  return m / static_cast<double>(points.size());
+}
+
+// The ribbed plate is symmetric under a half turn about z, so a partial scan of it fits two poses equally well; a
+// boss (8 mm radius, 4 mm high, 2 mm ramp) near one corner makes the mesh pair's pose unique.
+double boss_height(double x, double y) {
+  const double t = std::clamp((10.0 - std::hypot(x + 70.0, y - 45.0)) / 2.0, 0.0, 1.0);
+  return 4.0 * t * t * (3.0 - 2.0 * t);
+}
+
+// The plate (with the boss) as a height field on a regular grid of ~`spacing` mm, two triangles a cell.
+conform::Mesh plate_mesh(const conform::RibbedPlateOptions& o, double spacing) {
+  const int nx = static_cast<int>(std::lround(o.length_mm / spacing)) + 1;
+  const int ny = static_cast<int>(std::lround(o.width_mm / spacing)) + 1;
+  conform::Mesh mesh;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double x = -0.5 * o.length_mm + o.length_mm * i / (nx - 1);
+      const double y = -0.5 * o.width_mm + o.width_mm * j / (ny - 1);
+      mesh.vertices.emplace_back(x, y, conform::ribbed_plate_height(o, x, y) + boss_height(x, y));
+    }
+  }
+  for (int j = 0; j + 1 < ny; ++j) {
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      mesh.faces.push_back({a, b, d});
+      mesh.faces.push_back({a, d, c});
+    }
+  }
+  return mesh;
+}
+
+Case fine_case(const std::string& dir) {
+  conform::RibbedPlateOptions o;
+  o.seed = 1;
+  const std::vector<Eigen::Vector3d> reference = conform::ribbed_plate_samples(o);
+  o.seed = 2;
+  const std::vector<Eigen::Vector3d> scan = conform::ribbed_plate_samples(o);
+  Case c;
+  c.truth = pose(2.0, {1, 2, 3}, {3.0, -2.0, 1.0});  // 3.7 mm
+  c.scan_centroid = c.truth.inverse() * mean_of(scan);
+  c.reference_file = dir + "/fine_reference.ply";
+  c.scan_file = dir + "/fine_scan.ply";
+  conform::write_cloud(c.reference_file, to_cloud(reference, Eigen::Isometry3d::Identity()));
+  conform::write_cloud(c.scan_file, to_cloud(scan, c.truth.inverse()));
+  return c;
+}
+
+Case mesh_case(const std::string& dir, Case* near_case) {
+  conform::RibbedPlateOptions o;
+  o.seed = 3;
+  o.points = 123000;  // 65 % of them (x < 30 mm) are kept: ~80k
+  std::vector<Eigen::Vector3d> scan;
+  for (const Eigen::Vector3d& p : conform::ribbed_plate_samples(o)) {
+    if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + boss_height(p.x(), p.y()));
+  }
+  Case c;
+  c.truth = pose(40.0, {1, -2, 3}, {30.0, -20.0, 10.0});
+  c.scan_centroid = c.truth.inverse() * mean_of(scan);
+  c.reference_file = dir + "/mesh_reference.ply";
+  c.scan_file = dir + "/mesh_scan.ply";
+  const conform::Mesh mesh = plate_mesh(o, 0.442);
+  std::printf("mesh pair: scan %zu points, reference %zu vertices, %zu faces\n", scan.size(), mesh.vertices.size(),
+              mesh.faces.size());
+  conform::write_mesh(c.reference_file, mesh);
+  conform::write_cloud(c.scan_file, to_cloud(scan, c.truth.inverse()));
+  // The same scan 1 deg / 0.6 mm from the truth, for the fine registration alone (issue 13: "from 1 deg off").
+  Case near = c;
+  near.scan_file = dir + "/mesh_scan_near.ply";
+  near.truth = pose(1.0, {3, 5, -8}, {0.5, -0.3, 0.2});
+  near.scan_centroid = near.truth.inverse() * mean_of(scan);
+  conform::write_cloud(near.scan_file, to_cloud(scan, near.truth.inverse()));
+  *near_case = near;
+  return c;
+}
+
+Row run_conform(const std::string& conform, const Case& c, const std::string& dir, const std::string& name,
+                std::vector<std::string> extra, int repeats) {
+  const std::string out = dir + "/T_" + std::to_string(std::hash<std::string>()(name)) + ".txt";
+  std::vector<std::string> args = {conform, "align", "--scan", c.scan_file, "--reference", c.reference_file,
+                                   "--out-transform", out};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::remove(out.c_str());
+  Row row{name, time_process(args, repeats), Eigen::Isometry3d::Identity()};
+  struct stat st{};
+  if (stat(out.c_str(), &st) == 0) row.T = conform::read_transform(out);
+  return row;
+}
+
+Eigen::Isometry3d isometry(const Eigen::Matrix4d& m) {
+  Eigen::Isometry3d T;
+  T.matrix() = m;
+  return T;
+}
+
+Row run_pcl_icp(const Case& c, int repeats) {
+  const conform::Cloud scan = conform::read_cloud(c.scan_file), reference = conform::read_cloud(c.reference_file);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr source(new pcl::PointCloud<pcl::PointXYZ>(scan.points));
+  pcl::PointCloud<pcl::PointXYZ>::Ptr target(new pcl::PointCloud<pcl::PointXYZ>(reference.points));
+  Row row{"PCL IterativeClosestPoint (no file reading)", {}, Eigen::Isometry3d::Identity()};
+  row.time = time_here(repeats, [&] {
+    pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
+    icp.setInputSource(source);
+    icp.setInputTarget(target);
+    icp.setMaxCorrespondenceDistance(10.0);
+    icp.setMaximumIterations(50);
+    icp.setTransformationEpsilon(1e-12);
+    icp.setTransformationRotationEpsilon(1.0 - 1e-12);
+    icp.setEuclideanFitnessEpsilon(1e-12);
+    pcl::PointCloud<pcl::PointXYZ> aligned;
+    icp.align(aligned);
+    row.T = isometry(icp.getFinalTransformation().cast<double>());
+  });
+  return row;
+}
+
+std::shared_ptr<open3d::geometry::PointCloud> read_o3d_cloud(const std::string& path) {
+  auto cloud = std::make_shared<open3d::geometry::PointCloud>();
+  open3d::io::ReadPointCloud(path, *cloud);
+  return cloud;
+}
+
+// The reference as Open3D takes it: a cloud's points with estimated normals, or a mesh's vertices with its normals.
+std::shared_ptr<open3d::geometry::PointCloud> read_o3d_reference(const std::string& path, bool mesh, double radius) {
+  if (!mesh) {
+    auto cloud = read_o3d_cloud(path);
+    cloud->EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(radius, 30));
+    return cloud;
+  }
+  open3d::geometry::TriangleMesh m;
+  open3d::io::ReadTriangleMesh(path, m);
+  m.ComputeVertexNormals();
+  auto cloud = std::make_shared<open3d::geometry::PointCloud>(m.vertices_);
+  cloud->normals_ = m.vertex_normals_;
+  return cloud;
+}
+
+const o3r::ICPConvergenceCriteria kCriteria(1e-6, 1e-6, 50);
+
+Row run_o3d_fine(const Case& c, bool mesh, bool gicp, int repeats) {
+  Row row{gicp ? "Open3D generalized ICP (reading, normals)" : "Open3D point-to-plane ICP (reading, normals)", {},
+          Eigen::Isometry3d::Identity()};
+  row.time = time_here(repeats, [&] {
+    auto source = read_o3d_cloud(c.scan_file);
+    auto target = read_o3d_reference(c.reference_file, mesh, 1.5);
+    const o3r::RegistrationResult r =
+        gicp ? o3r::RegistrationGeneralizedICP(*source, *target, 10.0, Eigen::Matrix4d::Identity(),
+                                               o3r::TransformationEstimationForGeneralizedICP(), kCriteria)
+             : o3r::RegistrationICP(*source, *target, 10.0, Eigen::Matrix4d::Identity(),
+                                    o3r::TransformationEstimationPointToPlane(), kCriteria);
+    row.T = isometry(r.transformation_);
+  });
+  return row;
+}
+
+// Open3D's global registration tutorial, with conform's automatic voxel (1/30 of the reference's diagonal).
+Row run_o3d_pipeline(const Case& c, double voxel, bool gicp, int repeats) {
+  Row row{gicp ? "Open3D FPFH + RANSAC + generalized ICP" : "Open3D FPFH + RANSAC + point-to-plane", {},
+          Eigen::Isometry3d::Identity()};
+  row.time = time_here(repeats, [&] {
+    auto source = read_o3d_cloud(c.scan_file);
+    auto target = read_o3d_reference(c.reference_file, true, 0.0);
+    auto source_down = source->VoxelDownSample(voxel), target_down = target->VoxelDownSample(voxel);
+    for (auto& down : {source_down, target_down}) {
+      down->EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(2.0 * voxel, 30));
+    }
+    const auto source_fpfh = o3r::ComputeFPFHFeature(*source_down, open3d::geometry::KDTreeSearchParamHybrid(5.0 * voxel, 100));
+    const auto target_fpfh = o3r::ComputeFPFHFeature(*target_down, open3d::geometry::KDTreeSearchParamHybrid(5.0 * voxel, 100));
+    const o3r::CorrespondenceCheckerBasedOnEdgeLength edges(0.9);
+    const o3r::CorrespondenceCheckerBasedOnDistance distance(1.5 * voxel);
+    std::srand(1);
+    const o3r::RegistrationResult coarse = o3r::RegistrationRANSACBasedOnFeatureMatching(
+        *source_down, *target_down, *source_fpfh, *target_fpfh, true, 1.5 * voxel,
+        o3r::TransformationEstimationPointToPoint(false), 3, {edges, distance},
+        o3r::RANSACConvergenceCriteria(100000, 0.999));
+    const o3r::RegistrationResult fine =
+        gicp ? o3r::RegistrationGeneralizedICP(*source, *target, 0.4 * voxel, coarse.transformation_,
+                                               o3r::TransformationEstimationForGeneralizedICP(), kCriteria)
+             : o3r::RegistrationICP(*source, *target, 0.4 * voxel, coarse.transformation_,
+                                    o3r::TransformationEstimationPointToPlane(), kCriteria);
+    row.T = isometry(fine.transformation_);
+  });
+  return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string conform = "build/conform", baseline, dir = "/tmp/conform_align_peers_bench";
+  int repeats = 3;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i];
+    if (key == "--conform") conform = argv[i + 1];
+    if (key == "--repeats") repeats = std::atoi(argv[i + 1]);
+    if (key == "--dir") dir = argv[i + 1];
+    if (key == "--baseline") baseline = argv[i + 1];
+  }
+  mkdir(dir.c_str(), 0755);
+  open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
+  std::printf("  %-50s %10s %8s %10s %8s  %13s %12s\n", "", "wall", "ratio", "cpu", "ratio", "rotation err",
+              "centroid err");
+
+  const Case fine = fine_case(dir);
+  std::printf("fine pair: 100k <-> 100k ribbed plate clouds, 2 deg / 3.7 mm apart\n");
+  const Row c1 = run_conform(conform, fine, dir, "conform align (whole process)", {}, repeats);
+  print_row(fine, c1, c1);
+  if (!baseline.empty()) print_row(fine, run_conform(baseline, fine, dir, "baseline conform align", {}, repeats), c1);
+  print_row(fine, run_pcl_icp(fine, 1), c1);
+  print_row(fine, run_o3d_fine(fine, false, false, repeats), c1);
+  print_row(fine, run_o3d_fine(fine, false, true, repeats), c1);
+
+  Case near;
+  const Case mesh = mesh_case(dir, &near);
+  std::printf("mesh pair, fine only: the scan 1 deg / 0.6 mm off\n");
+  const Row c2 = run_conform(conform, near, dir, "conform align (whole process)", {}, repeats);
+  print_row(near, c2, c2);
+  if (!baseline.empty()) print_row(near, run_conform(baseline, near, dir, "baseline conform align", {}, repeats), c2);
+  print_row(near, run_conform(conform, near, dir, "conform align --method point-to-plane", {"--method", "point-to-plane"},
+                              repeats),
+            c2);
+  print_row(near, run_o3d_fine(near, true, false, repeats), c2);
+  print_row(near, run_o3d_fine(near, true, true, repeats), c2);
+
+  std::printf("mesh pair, coarse + fine: the scan 40 deg / 37 mm off\n");
+  const double voxel = std::hypot(200.0, 150.0, 8.0) / 30.0;
+  const Row c3 = run_conform(conform, mesh, dir, "conform align --init fpfh (whole process)", {"--init", "fpfh"},
+                             repeats);
+  print_row(mesh, c3, c3);
+  if (!baseline.empty()) {
+    print_row(mesh, run_conform(baseline, mesh, dir, "baseline conform align --init fpfh", {"--init", "fpfh"}, repeats),
+              c3);
+  }
+  print_row(mesh, run_conform(conform, mesh, dir, "conform align --init fpfh --method point-to-plane",
+                              {"--init", "fpfh", "--method", "point-to-plane"}, repeats),
+            c3);
+  print_row(mesh, run_o3d_pipeline(mesh, voxel, false, repeats), c3);
+  print_row(mesh, run_o3d_pipeline(mesh, voxel, true, repeats), c3);
+  return 0;
+}
