@@ -74,6 +74,33 @@ double size_of(const std::vector<Eigen::Vector3d>& points) {
   return box.diagonal().norm();
 }
 
+// The best pose followed by a turn of the reference about its principal axes through its centroid: half turns about
+// each axis, and quarter turns about an axis whose two companions spread alike (within `similarity`).
+std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+                                         double similarity) {
+  std::vector<CoarseStart> out;
+  if (reference.size() < 3) return out;
+  const PrincipalAxes axes = principal_axes(reference);
+  const auto add = [&](int k, double degrees) {
+    const Eigen::Vector3d a = axes.axes.col(k);
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.linear() = Eigen::AngleAxisd(degrees * M_PI / 180.0, a).toRotationMatrix();
+    turn.translation() = axes.centroid - turn.linear() * axes.centroid;
+    out.push_back({best.label + " turned " + std::to_string(static_cast<int>(degrees)) + " deg about reference axis " +
+                       std::to_string(k + 1),
+                   turn * best.T_probe});
+  };
+  for (int k = 0; k < 3; ++k) {
+    add(k, 180.0);
+    const double u = axes.variances((k + 1) % 3), v = axes.variances((k + 2) % 3);
+    if (std::abs(u - v) <= similarity * std::max(u, v)) {
+      add(k, 90.0);
+      add(k, -90.0);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool MultiStartOptions::IsValid(std::string* error) const {
@@ -93,6 +120,8 @@ bool MultiStartOptions::IsValid(std::string* error) const {
   } else if (!(separation_z >= 0.0) || !std::isfinite(separation_z) || !(separation_ratio >= 1.0) ||
              !std::isfinite(separation_ratio) || !(separation_min_share >= 0.0 && separation_min_share <= 1.0)) {
     why = "separation_z must be finite and >= 0, separation_ratio finite and >= 1, separation_min_share in [0, 1]";
+  } else if (!(symmetry_similarity >= 0.0 && symmetry_similarity < 1.0)) {
+    why = "symmetry_similarity must be in [0, 1)";
   } else if (!(distinct_deg > 0.0) || !std::isfinite(distinct_deg) || !(distinct_mm >= 0.0) ||
              !std::isfinite(distinct_mm)) {
     why = "distinct_deg must be finite and > 0, distinct_mm finite and >= 0";
@@ -114,7 +143,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       by_share ? 3.0 * median_spacing(reference.points(), reference.tree()) + options.inlier_distance_mm : 0.0;
   MultiStartResult result;
   std::vector<std::vector<char>> masks;
-  for (const CoarseStart& start : starts) {
+  const auto probe_start = [&](const CoarseStart& start) {
     IcpOptions probe = options.probe;
     probe.progress = nullptr;
     const IcpResult r = icp(subset, reference, start.T_ref_scan, probe);
@@ -132,6 +161,16 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     result.starts.push_back(report);
     if (result.best < 0 || better(report, result.starts[static_cast<std::size_t>(result.best)])) {
       result.best = static_cast<int>(result.starts.size()) - 1;
+    }
+  };
+  for (const CoarseStart& start : starts) probe_start(start);
+  if (options.probe_reference_symmetry) {
+    // The best pose turned by the reference's own candidate symmetries: if the reference (or the part of it the scan
+    // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
+    // not any start happened to land there (a partial scan of a symmetric plate: every FPFH run may agree).
+    const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
+    for (const CoarseStart& turned : symmetry_starts(best_given, reference.points(), options.symmetry_similarity)) {
+      probe_start(turned);
     }
   }
   const StartReport best = result.starts[static_cast<std::size_t>(result.best)];

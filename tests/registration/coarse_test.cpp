@@ -5,6 +5,8 @@
 
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
+#include "conform/datasets/ribbed_plate.h"
+#include "conform/datasets/workpiece.h"
 #include "conform/registration/coarse_pca.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/multi_start.h"
@@ -160,6 +162,47 @@ TEST(MultiStart, ACloseStartIsToldApartOnlyByAOneSidedDifference) {
       EXPECT_LT(other.only_share, 0.25 * other.best_only_share);
     }
   }
+}
+
+// Issue 13 (align-speed's finding): a partial scan of the ribbed plate, which is symmetric under a half turn about its
+// normal, came back half-turned with "trust the pose", exit 0: every start agreed, so no start stood on the other
+// pose. Given only the true start, the half-turned probe of the best finds the other pose and the result is
+// ambiguous; on the asymmetric workpiece the same probes fit worse and the true start stands alone.
+TEST(MultiStart, TheReferencesOwnSymmetryMakesAPartialScanAmbiguous) {
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 10.0;
+  options.inlier_distance_mm = 0.1;
+  const std::vector<CoarseStart> truth = {{"truth", Eigen::Isometry3d::Identity()}};
+
+  RibbedPlateOptions plate;
+  plate.points = 20000;
+  Mesh plate_reference;
+  plate_reference.vertices = ribbed_plate_samples(plate);
+  plate.seed = 2;
+  std::vector<Eigen::Vector3d> plate_scan;
+  for (const Eigen::Vector3d& p : ribbed_plate_samples(plate))
+    if (p.x() > -40.0) plate_scan.push_back(p);  // 70 % of the plate
+  for (const bool probe : {false, true}) {
+    options.probe_reference_symmetry = probe;
+    const MultiStartResult r = rank_starts(plate_scan, IcpReference(plate_reference), truth, options);
+    EXPECT_EQ(r.ambiguous, probe);
+    if (probe) {
+      ASSERT_GE(r.runner_up, 0);
+      EXPECT_NE(r.starts[static_cast<std::size_t>(r.runner_up)].label.find("turned 180"), std::string::npos);
+    }
+  }
+
+  WorkpieceOptions block;
+  block.noise_mm = 0.02;
+  Mesh block_reference;
+  block_reference.vertices = workpiece_samples(block);
+  block.seed = 2;
+  block.x_from = 0.3;
+  options.probe_reference_symmetry = true;
+  const MultiStartResult r = rank_starts(workpiece_samples(block), IcpReference(block_reference), truth, options);
+  EXPECT_FALSE(r.ambiguous);
+  EXPECT_EQ(r.best, 0);
+  EXPECT_GT(r.starts.size(), 3u);  // the probes ran
 }
 
 TEST(Downsample, MedianSpacingOfAGrid) {

@@ -37,6 +37,13 @@ struct MultiStartOptions {
   double separation_ratio = 4.0;
   double separation_min_share = 0.005;
 
+  // The best start is also probed turned by the reference's candidate symmetries (half turns about its principal
+  // axes through its centroid; quarter turns about an axis whose other two spread within symmetry_similarity of each
+  // other), labelled "... turned N deg about reference axis K": a symmetric reference then makes the result
+  // ambiguous even when no start landed on the other pose.
+  bool probe_reference_symmetry = true;
+  double symmetry_similarity = 0.1;
+
   MultiStartOptions() { probe.max_iterations = 15; }
   bool IsValid(std::string* error) const;
 };
@@ -57,7 +64,7 @@ struct StartReport {
 };
 
 struct MultiStartResult {
-  std::vector<StartReport> starts;  // in the order given
+  std::vector<StartReport> starts;  // in the order given, then the best's symmetry probes
   int best = -1;                    // index into starts
   bool ambiguous = false;
   int runner_up = -1;  // the start that made it ambiguous, else -1
