@@ -87,7 +87,7 @@ TEST(FineMethod, PointToSurfaceHasNoChordBias) {
       part.scan = freeform_surface(exact).vertices;
     }
     const IcpReference reference(part.reference);
-    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    for (std::uint64_t seed = 1; seed <= 1; ++seed) {  // more seeds: FineMethodMatrix.DefaultsOverSeeds
       SCOPED_TRACE(part.name + " seed " + std::to_string(seed));
       const Fit f = fit(part, reference, IcpMethod::kPointToSurface, seed);
       std::printf("  %-10s noise-free: %.2e mm, %.2e deg, rms %.2e mm\n", part.name.c_str(), f.error.translation_mm,
@@ -101,11 +101,11 @@ TEST(FineMethod, PointToSurfaceHasNoChordBias) {
 }
 
 // Generalized ICP on a generated cloud pair (the free-form surface's reference vertices as the reference cloud, a
-// noisy 3 mm re-meshing as the scan), from seeded starts 3 deg / 3 mm away: within 0.01 mm and 0.01 deg.
+// noisy 3 mm re-meshing as the scan), from two seeded starts 3 deg / 3 mm away: within 0.01 mm and 0.01 deg.
 TEST(FineMethod, PlaneToPlaneRecoversAGeneratedCloudPair) {
   const test::TestPart part = test::make_test_part(PartKind::kFreeform);
   const IcpReference reference = as_cloud(part.reference);
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Fit f = fit(part, reference, IcpMethod::kPlaneToPlane, seed);
     EXPECT_TRUE(f.result.converged) << to_string(f.result.termination);
