@@ -15,7 +15,6 @@ std::vector<Eigen::Vector3d> plane_normals(const std::vector<Eigen::Vector3d>& p
 // The weight of a pair's difference d = T a - b in Eq. (2): (C_ref + R C_scan R^T)^-1, with n_ref the reference
 // point's normal and n_scan the scan point's, already rotated into the reference frame (either may be zero: no
 // surface known there, an isotropic covariance).
-Eigen::Matrix3d plane_to_plane_information(const Eigen::Vector3d& n_ref, const Eigen::Vector3d& n_scan,
-                                           double epsilon);
+Eigen::Matrix3d plane_to_plane_information(const Eigen::Vector3d& n_ref, const Eigen::Vector3d& n_scan, double epsilon);
 
 }  // namespace conform::detail

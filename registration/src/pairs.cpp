@@ -43,7 +43,8 @@ void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d&
   const std::vector<Eigen::Vector3d>& points = reference.points();
   const std::vector<Eigen::Vector3d>& normals = reference.normals();
   const Eigen::Vector3d& a = points[static_cast<std::size_t>(face[0])];
-  Eigen::Vector3d face_normal = (points[static_cast<std::size_t>(face[1])] - a).cross(points[static_cast<std::size_t>(face[2])] - a);
+  Eigen::Vector3d face_normal =
+      (points[static_cast<std::size_t>(face[1])] - a).cross(points[static_cast<std::size_t>(face[2])] - a);
   const double area2 = face_normal.norm();
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
   if (area2 > 0.0 && std::isfinite(area2)) {

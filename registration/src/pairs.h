@@ -14,12 +14,12 @@
 namespace conform::detail {
 
 struct Pair {
-  Eigen::Vector3d q = Eigen::Vector3d::Zero();       // the scan point in the reference frame
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();  // its reference point (or surface point)
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the reference's unit normal there
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();            // the scan point in the reference frame
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();       // its reference point (or surface point)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();       // the reference's unit normal there
   Eigen::Vector3d scan_normal = Eigen::Vector3d::Zero();  // plane-to-plane: the scan's unit normal, reference frame
-  double distance = 0.0;                             // |q - target|, mm
-  double residual = 0.0;                             // the method's: distance, or n . (q - target)
+  double distance = 0.0;                                  // |q - target|, mm
+  double residual = 0.0;                                  // the method's: distance, or n . (q - target)
   bool found = false;
 };
 

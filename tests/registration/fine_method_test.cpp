@@ -62,8 +62,8 @@ Fit fit(const test::TestPart& part, const IcpReference& reference, IcpMethod met
   options.method = method;
   options.max_correspondence_distance_mm = 0.1 * part.size_mm;
   Fit f;
-  f.result = icp(test::transformed_points(part.scan, truth.inverse()), reference, Eigen::Isometry3d::Identity(),
-                 options);
+  f.result =
+      icp(test::transformed_points(part.scan, truth.inverse()), reference, Eigen::Isometry3d::Identity(), options);
   f.error = test::pose_error(part, f.result.T_ref_scan, truth);
   return f;
 }
