@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/registration/icp.h"
@@ -98,6 +99,31 @@ TEST(FineMethod, PointToSurfaceHasNoChordBias) {
       EXPECT_LT(f.result.rms_mm, 2e-3);  // flat facets: the chord error, up to kappa h^2 / 8 = 0.013 mm on the tube
     }
   }
+}
+
+// The crease flags the curved pairing relies on: two planes meeting along a ridge (vertices 0, 1) at 90 deg (their
+// normals 45 deg from the ridge vertices' averaged normal) make the ridge a crease; at 10 deg it is smooth; vertices
+// with faces of one plane only are smooth. Every vertex of the 4 mm tube mesh (1.5 deg between faces) is smooth; a
+// cloud has no flags.
+TEST(FineMethod, CreaseVertices) {
+  for (double fold_deg : {90.0, 10.0}) {
+    const double h = std::tan(0.5 * fold_deg * kDeg);
+    Mesh roof;
+    roof.vertices = {{0, 0, 0}, {1, 0, 0}, {0, -1, -h}, {1, -1, -h}, {0, 1, -h}, {1, 1, -h}};
+    roof.faces = {{2, 3, 1}, {2, 1, 0}, {0, 1, 5}, {0, 5, 4}};
+    const IcpReference reference(roof);
+    const unsigned char ridge = fold_deg > 60.0 ? 0 : 1;
+    const std::vector<unsigned char> expected = {ridge, ridge, 1, 1, 1, 1};
+    EXPECT_EQ(reference.smooth(), expected) << fold_deg << " deg";
+  }
+  const IcpReference tube(test::make_test_part(PartKind::kTubePatch).reference);
+  for (unsigned char s : tube.smooth()) ASSERT_EQ(s, 1);
+  EXPECT_TRUE(as_cloud(test::make_test_part(PartKind::kBox).reference).smooth().empty());
+  IcpOptions options;
+  options.gicp_epsilon = 0.0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("gicp_epsilon"), std::string::npos);
 }
 
 // Generalized ICP on a generated cloud pair (the free-form surface's reference vertices as the reference cloud, a
