@@ -117,9 +117,10 @@ class AlignCommand : public Command {
         ->required();
     c.add_option("--reference", options_.reference_path, "Reference: CAD mesh or cloud, same formats")->required();
     c.add_option("--method", method_,
-                 "point-to-point, point-to-plane or point-to-surface (closest point on the reference's triangles); "
-                 "default point-to-surface for a mesh reference, point-to-plane for a cloud")
-        ->check(CLI::IsMember({"point-to-point", "point-to-plane", "point-to-surface"}));
+                 "point-to-point, point-to-plane, point-to-surface (closest point on the reference's triangles) or "
+                 "plane-to-plane (generalized ICP; also 'gicp'); default point-to-surface for a mesh reference, "
+                 "plane-to-plane for a cloud")
+        ->check(CLI::IsMember({"point-to-point", "point-to-plane", "point-to-surface", "plane-to-plane", "gicp"}));
     c.add_option("--init", init_,
                  "Coarse placement: none (the scan is roughly in place), pca (principal axes, all sign choices "
                  "tried), fpfh (FPFH features + RANSAC; partial overlap) or pairs:FILE (>= 3 point pairs, one per "
@@ -156,9 +157,10 @@ class AlignCommand : public Command {
   int run() override {
     options_.mm_per_unit = millimetres_per_unit(units_);
     if (!method_.empty()) {
-      options_.method = method_ == "point-to-point"   ? IcpMethod::kPointToPoint
-                        : method_ == "point-to-plane" ? IcpMethod::kPointToPlane
-                                                      : IcpMethod::kPointToSurface;
+      options_.method = method_ == "point-to-point"     ? IcpMethod::kPointToPoint
+                        : method_ == "point-to-plane"   ? IcpMethod::kPointToPlane
+                        : method_ == "point-to-surface" ? IcpMethod::kPointToSurface
+                                                        : IcpMethod::kPlaneToPlane;
     }
     parse_init();
     options_.progress = stderr_progress(false);

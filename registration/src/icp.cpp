@@ -7,6 +7,7 @@
 
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
+#include "gicp.h"
 #include "icp_step.h"
 #include "pairs.h"
 #include "plane_matrix.h"
@@ -20,6 +21,16 @@ using detail::Pair;
 // The subset stage of multi-resolution ICP stops at 100 times the tolerances: its optimum differs from the full
 // set's by about that, and the full set takes the last steps.
 constexpr double kCoarseToleranceScale = 100.0;
+// Steps that return to the pose of two steps before count as converged when smaller than this many tolerances.
+constexpr double kCycleStepScale = 100.0;
+// Plane-to-plane: the scan's normals from this many neighbours, as the reference cloud's (icp_reference.cpp).
+constexpr int kScanNormalNeighbours = 16;
+
+// The scan and, for plane-to-plane, its normals: what every pass iterates on.
+struct ScanData {
+  const std::vector<Eigen::Vector3d>& points;
+  std::vector<Eigen::Vector3d> normals;  // empty unless plane-to-plane
+};
 
 // What one step saw, at the pose it started from.
 struct StepFigures {
@@ -86,15 +97,20 @@ void check_input(const std::vector<Eigen::Vector3d>& scan, const IcpReference& r
 // Steps from result.T_ref_scan on `points` until a step moves less than the tolerances times tolerance_scale
 // (converged) or result.iterations reaches max_iterations; stops with kTooFewCorrespondences when too few pairs are
 // left. `result` keeps the figures of the last pairs found (at the pose the last step started from).
-void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& reference, const IcpOptions& options,
-             const detail::PairRules& rules, double tolerance_scale, int max_iterations, std::vector<Pair>& pairs,
-             Pass& pass, IcpResult& result) {
+void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+             const IcpReference& reference, const IcpOptions& options, const detail::PairRules& rules,
+             double tolerance_scale, int max_iterations, std::vector<Pair>& pairs, Pass& pass, IcpResult& result) {
   const bool point_to_point = options.method == IcpMethod::kPointToPoint;
+  const auto within = [&](double rotation_rad, double translation_mm, double scale) {
+    return rotation_rad <= scale * tolerance_scale * options.rotation_tolerance_rad &&
+           translation_mm <= scale * tolerance_scale * options.translation_tolerance_mm;
+  };
   detail::PairCache cache;  // the last step's searches, reused where exact: late steps search almost nothing
   cache.reset(points.size(), options.method == IcpMethod::kPointToSurface);
-  while (result.iterations < max_iterations) {
+  Eigen::Isometry3d one_back = result.T_ref_scan, two_back = result.T_ref_scan;
+  for (int steps = 0; result.iterations < max_iterations; ++steps) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
-    detail::find_pairs(points, result.T_ref_scan, reference, rules, pairs, &cache);
+    detail::find_pairs(points, normals, result.T_ref_scan, reference, rules, pairs, &cache);
     const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
     if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) {
       result.termination = IcpTermination::kTooFewCorrespondences;
@@ -108,7 +124,7 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
     } else {
       const Eigen::MatrixXd basis = detail::allowed_basis(options.free_dof, f.degeneracy, options.freeze_degenerate);
       delta = detail::gauss_newton_step(pairs, f.inliers, f.weights, options.method, f.plane.centre,
-                                        f.plane.length_scale_mm, basis);
+                                        f.plane.length_scale_mm, basis, options.gicp_epsilon);
     }
     const Eigen::Vector3d centre = f.plane.centre;
     record(pairs, f, points.size(), options, pass, result);
@@ -116,8 +132,14 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
     ++result.iterations;
     result.last_rotation_rad = rotation_angle(delta);
     result.last_translation_mm = (delta * centre - centre).norm();
-    if (result.last_rotation_rad <= tolerance_scale * options.rotation_tolerance_rad &&
-        result.last_translation_mm <= tolerance_scale * options.translation_tolerance_mm) {
+    // A step back to where the step before started: the pairs alternate between two sets, and the optimum lies
+    // between two poses closer than the steps (seen with plane-to-plane on a LiDAR scene: steps of 9e-4 mm, forever).
+    const Eigen::Isometry3d cycle = result.T_ref_scan * two_back.inverse();
+    const bool alternating = steps >= 1 && within(rotation_angle(cycle), (cycle * centre - centre).norm(), 1.0) &&
+                             within(result.last_rotation_rad, result.last_translation_mm, kCycleStepScale);
+    two_back = one_back;
+    one_back = result.T_ref_scan;
+    if (within(result.last_rotation_rad, result.last_translation_mm, 1.0) || alternating) {
       result.converged = true;
       result.termination = IcpTermination::kConverged;
       return;
@@ -126,29 +148,30 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const IcpReference& ref
 }
 
 // ICP from T_ref_scan_init with `pass.hold_noise_mm` deciding what is held.
-IcpResult run_pass(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
-                   const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options, Pass& pass) {
+IcpResult run_pass(const ScanData& scan, const IcpReference& reference, const Eigen::Isometry3d& T_ref_scan_init,
+                   const IcpOptions& options, Pass& pass) {
   detail::PairRules rules;
   rules.method = options.method;
   rules.max_distance_mm = options.max_correspondence_distance_mm;
   IcpResult result;
   result.T_ref_scan = T_ref_scan_init;
   std::vector<Pair> pairs;
-  if (options.coarse_points > 0 && scan.size() > 2 * options.coarse_points) {
+  if (options.coarse_points > 0 && scan.points.size() > 2 * options.coarse_points) {
     // Multi-resolution: the big steps on an even subset, the last ones (and the tolerances) on every point.
-    // At most half the iterations, so that the full set always has its share.
-    iterate(stride_downsample(scan, options.coarse_points), reference, options, rules, kCoarseToleranceScale,
-            std::max(1, options.max_iterations / 2), pairs, pass, result);
+    // At most half the iterations, so that the full set always has its share. (The same stride picks the normals.)
+    iterate(stride_downsample(scan.points, options.coarse_points),
+            scan.normals.empty() ? scan.normals : stride_downsample(scan.normals, options.coarse_points), reference,
+            options, rules, kCoarseToleranceScale, std::max(1, options.max_iterations / 2), pairs, pass, result);
     result.converged = false;
     result.termination = IcpTermination::kFailure;  // the full set decides, whatever the subset found
   }
-  iterate(scan, reference, options, rules, 1.0, options.max_iterations, pairs, pass, result);
+  iterate(scan.points, scan.normals, reference, options, rules, 1.0, options.max_iterations, pairs, pass, result);
   if (result.termination == IcpTermination::kFailure) {
     // Out of iterations: the figures at the final pose, which may be far from where the last step started. (When
     // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
     result.termination = IcpTermination::kMaxIterations;
-    detail::find_pairs(scan, result.T_ref_scan, reference, rules, pairs);
-    record(pairs, evaluate(pairs, options, pass.hold_noise_mm), scan.size(), options, pass, result);
+    detail::find_pairs(scan.points, scan.normals, result.T_ref_scan, reference, rules, pairs);
+    record(pairs, evaluate(pairs, options, pass.hold_noise_mm), scan.points.size(), options, pass, result);
   }
   if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {
     result.converged = false;
@@ -172,12 +195,14 @@ IcpResult icp(const std::vector<Eigen::Vector3d>& scan, const IcpReference& refe
   // Away from the optimum the residuals are the pose's error, not noise: holding by them would hold everything at
   // a wrong start. So the first pass holds only what the noise floor cannot fix (a plane's in-plane motions); when
   // the residuals' noise at its end leaves more directions too loose, a second pass from the start holds them.
+  ScanData data{scan, {}};
+  if (options.method == IcpMethod::kPlaneToPlane) data.normals = detail::plane_normals(scan, kScanNormalNeighbours);
   Pass first{options.min_kernel_scale_mm, 0};
-  IcpResult result = run_pass(scan, reference, T_ref_scan_init, options, first);
+  IcpResult result = run_pass(data, reference, T_ref_scan_init, options, first);
   if (result.converged && options.freeze_degenerate && result.degeneracy.degenerate_basis.size() > first.held) {
     Pass second{result.degeneracy.noise_mm, 0};
     const int iterations = result.iterations;
-    result = run_pass(scan, reference, T_ref_scan_init, options, second);
+    result = run_pass(data, reference, T_ref_scan_init, options, second);
     result.iterations += iterations;
   }
   report(options.progress, "icp", 1.0);

@@ -29,6 +29,8 @@ const char* to_string(IcpMethod method) {
       return "point-to-plane";
     case IcpMethod::kPointToSurface:
       return "point-to-surface";
+    case IcpMethod::kPlaneToPlane:
+      return "plane-to-plane";
   }
   return "unknown";
 }
@@ -63,6 +65,9 @@ bool IcpOptions::IsValid(std::string* error) const {
   }
   if (!(translation_tolerance_mm >= 0.0) || !std::isfinite(translation_tolerance_mm)) {
     return fail("translation_tolerance_mm must be finite and >= 0");
+  }
+  if (!(gicp_epsilon > 0.0 && gicp_epsilon <= 1.0)) {
+    return fail("gicp_epsilon = " + std::to_string(gicp_epsilon) + ": must be in (0, 1]");
   }
   if (max_iterations < 1) return fail("max_iterations = " + std::to_string(max_iterations) + ": must be >= 1");
   if (coarse_points > 0 && coarse_points < min_correspondences) {

@@ -5,6 +5,7 @@
 
 #include "block_sum.h"
 #include "conform/registration/horn.h"
+#include "gicp.h"
 
 namespace conform::detail {
 
@@ -64,7 +65,7 @@ Eigen::Isometry3d horn_step(const std::vector<Pair>& pairs, const std::vector<st
 
 Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
                                     const std::vector<double>& weights, IcpMethod method, const Eigen::Vector3d& centre,
-                                    double length_scale_mm, const Eigen::MatrixXd& basis) {
+                                    double length_scale_mm, const Eigen::MatrixXd& basis, double gicp_epsilon) {
   if (basis.cols() == 0 || !(length_scale_mm > 0.0)) return Eigen::Isometry3d::Identity();
   const double inv_length = 1.0 / length_scale_mm;
   const NormalEquations sums = block_sum(inliers.size(), NormalEquations{}, [&](std::size_t k, NormalEquations& e) {
@@ -72,13 +73,21 @@ Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::v
     const double w = weights[k];
     if (w <= 0.0) return;
     const Eigen::Vector3d a = (p.q - centre) * inv_length;
-    if (method == IcpMethod::kPointToPoint) {
-      // r = q - target; dq/d(w L, v) = [-[a]x, I] (Besl & McKay's objective, linearised).
+    if (method == IcpMethod::kPointToPoint || method == IcpMethod::kPlaneToPlane) {
+      // r = q - target; dq/d(w L, v) = [-[a]x, I] (Besl & McKay's objective, linearised). Plane-to-plane weights it
+      // by the inverse of the summed covariances, Eq. (2) of Segal et al. 2009, held fixed during the step.
       Eigen::Matrix<double, 3, 6> J;
       J.leftCols<3>() = -skew(a);
       J.rightCols<3>() = Eigen::Matrix3d::Identity();
-      e.H.noalias() += w * J.transpose() * J;
-      e.g.noalias() += w * J.transpose() * (p.q - p.target);
+      if (method == IcpMethod::kPlaneToPlane) {
+        const Eigen::Matrix3d omega = plane_to_plane_information(p.normal, p.scan_normal, gicp_epsilon);
+        const Eigen::Matrix<double, 3, 6> OJ = omega * J;
+        e.H.noalias() += w * J.transpose() * OJ;
+        e.g.noalias() += w * OJ.transpose() * (p.q - p.target);
+      } else {
+        e.H.noalias() += w * J.transpose() * J;
+        e.g.noalias() += w * J.transpose() * (p.q - p.target);
+      }
     } else {
       // r = n . (q - target); dr/d(w L, v) = [a x n, n] (Chen & Medioni 1992, small-angle linearisation).
       Vector6d J;

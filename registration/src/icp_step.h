@@ -21,10 +21,11 @@ Eigen::MatrixXd allowed_basis(const FreeDof& free_dof, const DegeneracyReport& d
 Eigen::Isometry3d horn_step(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
                             const std::vector<double>& weights);
 
-// Gauss-Newton on the method's residuals (3D for point-to-point, along the normal otherwise),
-// linearised about the pairs' centroid `centre` with length scale L, within span(basis).
+// Gauss-Newton on the method's residuals (3D for point-to-point, 3D weighted by both points' plane covariances for
+// plane-to-plane with gicp_epsilon, along the normal otherwise), linearised about the pairs' centroid `centre` with
+// length scale L, within span(basis).
 Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
                                     const std::vector<double>& weights, IcpMethod method, const Eigen::Vector3d& centre,
-                                    double length_scale_mm, const Eigen::MatrixXd& basis);
+                                    double length_scale_mm, const Eigen::MatrixXd& basis, double gicp_epsilon = 1e-3);
 
 }  // namespace conform::detail

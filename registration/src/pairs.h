@@ -15,11 +15,12 @@
 namespace conform::detail {
 
 struct Pair {
-  Eigen::Vector3d q = Eigen::Vector3d::Zero();       // the scan point in the reference frame
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();  // its reference point (or surface point)
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the reference's unit normal there
-  double distance = 0.0;                             // |q - target|, mm
-  double residual = 0.0;                             // the method's: distance, or n . (q - target)
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();            // the scan point in the reference frame
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();       // its reference point (or surface point)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();       // the reference's unit normal there
+  Eigen::Vector3d scan_normal = Eigen::Vector3d::Zero();  // plane-to-plane: the scan's unit normal, reference frame
+  double distance = 0.0;                                  // |q - target|, mm
+  double residual = 0.0;                                  // the method's: distance, or n . (q - target)
   bool found = false;
 };
 
@@ -30,11 +31,12 @@ struct PairRules {
 };
 
 // Pairs for every scan point at T_ref_scan (found = false beyond the distance). Parallel, order-independent.
+// scan_normals: the scan's unit normals (scan frame), one per point, for plane-to-plane; empty otherwise.
 // `cache` (reset for this scan and method): each point's search is reused from the last call while that is exact
 // (pair_cache.h): the same pairs, without most of the searches.
-void find_pairs(const std::vector<Eigen::Vector3d>& scan, const Eigen::Isometry3d& T_ref_scan,
-                const IcpReference& reference, const PairRules& rules, std::vector<Pair>& pairs,
-                PairCache* cache = nullptr);
+void find_pairs(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& scan_normals,
+                const Eigen::Isometry3d& T_ref_scan, const IcpReference& reference, const PairRules& rules,
+                std::vector<Pair>& pairs, PairCache* cache = nullptr);
 
 // The found pairs kept after trimming to `overlap` x scan size (smallest distances first), ascending by index.
 std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap);

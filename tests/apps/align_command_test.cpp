@@ -119,6 +119,20 @@ TEST(AlignCommand, JsonHasTheIssuesKeysAndTheTruth) {
   EXPECT_EQ(f.dir.listing(), "T.txt\naligned.ply\nreference.ply\nscan.ply\n");
 }
 
+// Generalized ICP by either of its names: the same pose as the truth, reported as plane-to-plane.
+TEST(AlignCommand, PlaneToPlaneByEitherName) {
+  BlockFiles f;
+  for (const char* name : {"plane-to-plane", "gicp"}) {
+    const auto r = align({"--scan", f.scan, "--reference", f.reference, "--method", name, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["method"], "plane-to-plane");
+    const Eigen::Isometry3d T = from_json(j["T_ref_scan"]);
+    EXPECT_LT(rotation_deg(T, truth_pose()), 0.01) << name;
+    EXPECT_LT((T.translation() - truth_pose().translation()).norm(), 0.02) << name;
+  }
+}
+
 TEST(AlignCommand, TextSaysConverged) {
   BlockFiles f;
   const auto text = align({"--scan", f.scan, "--reference", f.reference});

@@ -16,7 +16,8 @@ namespace {
 
 using test::kDeg;
 
-constexpr IcpMethod kMethods[] = {IcpMethod::kPointToPoint, IcpMethod::kPointToPlane, IcpMethod::kPointToSurface};
+constexpr IcpMethod kMethods[] = {IcpMethod::kPointToPoint, IcpMethod::kPointToPlane, IcpMethod::kPointToSurface,
+                                   IcpMethod::kPlaneToPlane};
 
 Mesh part(bool box, double edge_mm, double noise_mm = 0.0, std::uint64_t seed = 1) {
   PartOptions options;

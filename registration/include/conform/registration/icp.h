@@ -1,5 +1,6 @@
 #pragma once
-// Fine ICP of a scan against its reference: point-to-point, point-to-plane or point-to-surface (icp_options.h),
+// Fine ICP of a scan against its reference: point-to-point, point-to-plane, point-to-surface or plane-to-plane
+// (generalized ICP) (icp_options.h),
 // with a maximum distance, trimming and a robust kernel, stopping on physical tolerances, optionally with locked
 // degrees of freedom, and reporting what the scan does not constrain (degeneracy.h).
 //
@@ -30,8 +31,8 @@ struct IcpResult {
   int iterations = 0;  // steps taken
   // The figures below are those of the last pairs found: at the start of the last step when converged (that step
   // moved less than the tolerances), at the final pose otherwise.
-  // RMS of the inliers' distances (Euclidean to the nearest point for point-to-point, along the normal for
-  // point-to-plane, to the surface for point-to-surface), unweighted, mm.
+  // RMS of the inliers' distances (Euclidean to the nearest point for point-to-point, along the reference normal for
+  // point-to-plane and plane-to-plane, to the surface for point-to-surface), unweighted, mm.
   double rms_mm = 0.0;
   std::size_t inliers = 0;           // pairs within the maximum distance that survived trimming
   double inlier_fraction = 0.0;      // inliers / scan points

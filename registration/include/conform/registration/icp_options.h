@@ -16,9 +16,14 @@ enum class IcpMethod {
   // Chen & Medioni 1992: the distance along the reference normal at the nearest reference point; a Gauss-Newton step
   // on the linearised rotation. Converges in a few iterations; needs reference normals (estimated when missing).
   kPointToPlane,
-  // The closest point on the reference mesh's triangles (not only its vertices), then the distance along the
-  // surface normal there, solved as point-to-plane. Needs a reference with faces.
+  // The closest point on the reference mesh's triangles (not only its vertices), moved onto the smooth surface the
+  // vertices and their normals describe (Phong tessellation, except across creases), then the distance along the
+  // normal there, solved as point-to-plane. Needs a reference with faces. Free of the flat facets' chord error.
   kPointToSurface,
+  // Generalized ICP (Segal, Haehnel & Thrun 2009), "plane-to-plane": the nearest reference point, and the distance
+  // weighted by the inverse of the sum of both points' surface covariances (each a plane: small along its normal,
+  // from k neighbours of the scan and of the reference). Uses the local shape of both clouds.
+  kPlaneToPlane,
 };
 
 // Down-weights large residuals r with a scale s estimated from the residuals themselves (1.4826 x their median
@@ -66,6 +71,10 @@ struct IcpOptions {
   // The kernel's scale never drops below this (mm), so that a noise-free fit does not weight its last residuals of
   // 1e-12 mm against each other.
   double min_kernel_scale_mm = 1e-3;
+
+  // Generalized ICP: each point's covariance is a disc, 1 in its tangent plane and this along its normal (Segal et al.
+  // 2009, Sec. III-B); in (0, 1].
+  double gicp_epsilon = 1e-3;
 
   // --- termination: stop when a step rotates less than this and moves the scan's centroid less than that ---
   // Tight enough that a noise-free fit lands within 1e-6 mm; loose enough that real data, whose pairs can flip back

@@ -31,6 +31,10 @@ class IcpReference {
   const std::vector<Eigen::Vector3d>& normals() const { return normals_; }
   const KdTree& tree() const { return *tree_; }
   bool has_surface() const { return !faces_.empty(); }
+  const std::vector<Face>& faces() const { return faces_; }
+  // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal (a smooth surface
+  // there), 0 at a crease or corner (a CAD edge) and for a vertex without faces. Empty for a cloud.
+  const std::vector<unsigned char>& smooth() const { return smooth_; }
   // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
   const TriangleIndex& surface() const;
   std::size_t size() const { return points_.size(); }
@@ -41,6 +45,7 @@ class IcpReference {
   std::vector<Eigen::Vector3d> points_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<Face> faces_;
+  std::vector<unsigned char> smooth_;
   std::unique_ptr<KdTree> tree_;
   mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
   mutable std::unique_ptr<TriangleIndex> surface_;
