@@ -83,7 +83,8 @@ TEST(CadCommand, CompareAgainstIgesInMetresGivesTheNoise) {
   const test::SurfaceSample scan = test::sample_surface(cylinder, 4000, 0.03, 5);
   write_scan(scan, Eigen::Isometry3d::Identity(), dir.file("scan.ply"));
   const test::RunResult r =
-      conform_run({"compare", "--scan", dir.file("scan.ply"), "--reference", dir.file("cylinder.igs"), "--json"});
+      conform_run({"compare", "--scan", dir.file("scan.ply"), "--reference", dir.file("cylinder.igs"), "--json",
+                   "--cad-deflection", "0.002"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   double mean = 0.0, sq = 0.0;
@@ -100,13 +101,17 @@ TEST(CadCommand, CompareAgainstIgesInMetresGivesTheNoise) {
   EXPECT_NE(text.out.find("IGES in M (x1000 to mm)"), std::string::npos) << text.out;
 }
 
+// fit-cylinder fits the tessellation's vertices: on an analytic cylinder they lie on its two rims only, which the fit
+// rightly refuses (exit 1, "not a cylinder"); what is checked here is that the STEP input is read and reported.
 TEST(CadCommand, FitCylinderReadsStep) {
   test::TempDir dir;
   test::write_cad(test::cylinder(), dir.file("cylinder.stp"), CadFormat::kStep, "MM");
   const test::RunResult r = conform_run({"fit-cylinder", "--input", dir.file("cylinder.stp"), "--json"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_NE(r.exit_code, 2) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["cad"].size(), 1u);
+  ASSERT_EQ(j["cad"].size(), 1u);
+  EXPECT_EQ(j["cad"][0]["faces"], 3u);
+  EXPECT_GT(j["cad"][0]["triangles"].get<int>(), 100);
 }
 
 TEST(CadCommand, BadCadIsExitTwoNamingTheFile) {

@@ -20,6 +20,7 @@
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -40,12 +41,13 @@ TopoDS_Shape box_with_boss_and_hole() {
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
 
-TopoDS_Shape torus() { return BRepPrimAPI_MakeTorus(gp_Ax2(gp::Origin(), gp::DZ()), 30.0, 8.0).Shape(); }
+TopoDS_Shape torus() { return BRepPrimAPI_MakeTorus(gp_Ax2(gp::Origin(), gp::DZ()), 10.0, 3.0).Shape(); }
 
 void write_cad(const TopoDS_Shape& shape, const std::string& path, CadFormat format, const std::string& unit) {
   Message::DefaultMessenger()->ChangePrinters().Clear();
   bool ok = false;
   if (format == CadFormat::kStep) {
+    STEPControl_Controller::Init();  // registers write.step.unit: setting it before is silently ignored
     Interface_Static::SetCVal("write.step.unit", unit.c_str());
     STEPControl_Writer writer;
     ok = writer.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone && writer.Write(path.c_str()) == IFSelect_RetDone;

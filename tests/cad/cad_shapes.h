@@ -18,7 +18,7 @@ namespace conform::test {
 TopoDS_Shape box_with_boss_and_hole();
 // Radius 15 mm, height 40 mm, axis z from the origin.
 TopoDS_Shape cylinder();
-// Major radius 30 mm, minor 8 mm, about z.
+// Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
 TopoDS_Shape torus();
 
 enum class CadFormat { kStep, kIges };
