@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -68,9 +69,13 @@ TEST(CadCommand, AlignsAScanToAStepReference) {
     for (int col = 0; col < 4; ++col) T(row, col) = j["T_ref_scan"][row][col].get<double>();
   }
   const Eigen::Isometry3d error(T_ref_scan.inverse().matrix() * T);
-  EXPECT_LT(Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI, 0.005);
+  const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
   // The translation error where it matters: at the part (its centre, 30 20 12 mm).
-  EXPECT_LT((error * Eigen::Vector3d(30, 20, 12) - Eigen::Vector3d(30, 20, 12)).norm(), 0.01);
+  const double translation_mm = (error * Eigen::Vector3d(30, 20, 12) - Eigen::Vector3d(30, 20, 12)).norm();
+  EXPECT_LT(rotation_deg, 0.005);
+  EXPECT_LT(translation_mm, 0.01);
+  std::printf("align against STEP: rotation error %.5f deg, translation error at the part %.5f mm\n", rotation_deg,
+              translation_mm);
   ASSERT_EQ(j["cad"].size(), 1u);
   EXPECT_EQ(j["cad"][0]["triangles"], j["reference_faces"]);
   EXPECT_EQ(j["cad"][0]["deflection_mm"], 0.005);
@@ -99,6 +104,15 @@ TEST(CadCommand, CompareAgainstIgesInMetresGivesTheNoise) {
   const test::RunResult text =
       conform_run({"compare", "--scan", dir.file("scan.ply"), "--reference", dir.file("cylinder.igs")});
   EXPECT_NE(text.out.find("IGES in M (x1000 to mm)"), std::string::npos) << text.out;
+  // A scan in metres: --units m scales the scan, not the CAD (its unit is its own), and says so.
+  Eigen::Isometry3d to_metres = Eigen::Isometry3d::Identity();
+  to_metres.linear() *= 0.001;
+  write_scan(scan, to_metres, dir.file("scan_m.ply"));
+  const test::RunResult metres = conform_run({"compare", "--scan", dir.file("scan_m.ply"), "--reference",
+                                              dir.file("cylinder.igs"), "--units", "m", "--json"});
+  ASSERT_EQ(metres.exit_code, 0) << metres.err;
+  EXPECT_NEAR(nlohmann::json::parse(metres.out)["std_mm"].get<double>(), std_mm, 0.002);
+  EXPECT_NE(metres.err.find("--units does not apply to a CAD file"), std::string::npos) << metres.err;
 }
 
 // fit-cylinder fits the tessellation's vertices: on an analytic cylinder they lie on its two rims only, which the fit
