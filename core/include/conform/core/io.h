@@ -31,7 +31,10 @@ enum class NonFinitePolicy {
 };
 
 struct ReadOptions {
-  NonFinitePolicy non_finite = NonFinitePolicy::kReject;
+  // Implicit, so that `read_mesh(path, {NonFinitePolicy::kDrop})` stays a complete initialisation.
+  ReadOptions(NonFinitePolicy policy = NonFinitePolicy::kReject) : non_finite(policy) {}  // NOLINT(runtime/explicit)
+
+  NonFinitePolicy non_finite;
   CadReadOptions cad;  // .step .stp .iges .igs: the tessellation (deflection) and its progress
 };
 
