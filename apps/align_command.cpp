@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
@@ -115,7 +116,9 @@ class AlignCommand : public Command {
     c.description("Register a scan to its reference: rigid T_ref_scan (ICP after an optional coarse placement)");
     c.add_option("--scan", options_.scan_path, "Scan, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv)")
         ->required();
-    c.add_option("--reference", options_.reference_path, "Reference: CAD mesh or cloud, same formats")->required();
+    c.add_option("--reference", options_.reference_path,
+                 "Reference: CAD mesh or cloud, same formats; or CAD (.step .stp .iges .igs)")
+        ->required();
     c.add_option("--method", method_,
                  "point-to-point, point-to-plane, point-to-surface (closest point on the reference's triangles) or "
                  "plane-to-plane (generalized ICP; also 'gicp'); default point-to-surface for a mesh reference, "
@@ -145,6 +148,7 @@ class AlignCommand : public Command {
     c.add_option("--out-aligned", options_.out_aligned_path,
                  "Write the scan moved into the reference frame (mm), mesh or cloud as read, unless the pose is not "
                  "to be trusted");
+    add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -164,11 +168,15 @@ class AlignCommand : public Command {
     }
     parse_init();
     options_.progress = stderr_progress(false);
+    options_.cad.progress = options_.progress;
     const AlignResult result = run_align(options_);
     warn_all(result.warnings);
     if (json_) {
-      print_json(summary(result));
+      nlohmann::json j = summary(result);
+      j["cad"] = cad_json(result.cad_inputs);
+      print_json(j);
     } else {
+      print_cad_text(result.cad_inputs);
       print_text(result);
     }
     if (result.icp.degeneracy.degenerate()) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/compare.h"
@@ -41,6 +42,7 @@ class CompareCommand : public Command {
     c.add_option("--out-histogram", options_.out_histogram_path,
                  "Write a histogram of the deviations as .png, the tolerance band marked");
     c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm");
+    add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -59,12 +61,16 @@ class CompareCommand : public Command {
       return deviation_histogram_png(d, s, title);
     };
     options_.progress = stderr_progress(false);
+    options_.cad.progress = options_.progress;
     const CompareResult result = run_compare(options_);
     warn_all(result.warnings);
     if (!result.deviation.note.empty()) warn(result.deviation.note);
     if (json_) {
-      print_json(compare_json(options_, result, units_));
+      nlohmann::json j = compare_json(options_, result, units_);
+      j["cad"] = cad_json(result.cad_inputs);
+      print_json(j);
     } else {
+      print_cad_text(result.cad_inputs);
       print_text(result);
     }
     if (result.statistics.count == 0) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/fit_cylinder.h"
@@ -25,7 +26,7 @@ class FitCylinderCommand : public Command {
   void configure(CLI::App& c) override {
     c.description("Fit a cylinder to a tube scan: RANSAC on points and normals, then geometric least squares");
     c.add_option("--input", options_.input_path,
-                 "Scan to fit, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv); required")
+                 "Scan to fit, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv), or CAD; required")
         ->required();
     c.add_option("--threshold", options_.fit.threshold_mm,
                  "Inlier distance to the surface, mm; default 0 = automatic (3 noise sigmas, estimated)");
@@ -36,6 +37,7 @@ class FitCylinderCommand : public Command {
     c.add_option("--normals-k", options_.fit.normal_neighbors, "Neighbours of the PCA normals when the file has none");
     c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
     c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
+    add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
@@ -51,11 +53,15 @@ class FitCylinderCommand : public Command {
     options_.fit.axis_prior_tolerance_rad = radians(axis_tolerance_deg_);
     if (!axis_.empty() && !(options_.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
     options_.fit.progress = stderr_progress(quiet_ || json_);
+    options_.cad.progress = options_.fit.progress;
     const FitCylinderJobResult result = run_fit_cylinder(options_);
     warn_all(result.warnings);
     if (json_) {
-      print_json(fit_cylinder_json(result));
+      nlohmann::json j = fit_cylinder_json(result);
+      j["cad"] = cad_json(result.cad_inputs);
+      print_json(j);
     } else {
+      print_cad_text(result.cad_inputs);
       print_text(result);
     }
     if (!result.fit.ok) {

@@ -1,8 +1,10 @@
 // `conform info FILE`: points, faces, normals, bounding box and non-finite count of a cloud or mesh file.
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/info.h"
@@ -15,16 +17,20 @@ namespace {
 class InfoCommand : public Command {
  public:
   void configure(CLI::App& command) override {
-    command.add_option("file", options_.path, "Cloud or mesh file (.ply .stl .obj .pcd .xyz .txt .asc .csv)")
+    command
+        .add_option("file", options_.path,
+                    "Cloud, mesh or CAD file (.ply .stl .obj .pcd .xyz .txt .asc .csv; .step .stp .iges .igs)")
         ->required();
+    add_cad_options(command, options_.cad);
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   int run() override {
+    options_.cad.progress = stderr_progress(json_);
     const InfoResult info = run_info(options_);
     warn_all(info.warnings);
     if (json_) {
-      print_json({{"file", info.path},
+      nlohmann::json j = {{"file", info.path},
                   {"format", info.format},
                   {"points", info.points},
                   {"faces", info.faces},
@@ -33,9 +39,12 @@ class InfoCommand : public Command {
                   {"bounding_box_min_mm", to_json(info.box.min, info.box.empty())},
                   {"bounding_box_max_mm", to_json(info.box.max, info.box.empty())},
                   {"bounding_box_size_mm", to_json(info.box.size(), info.box.empty())},
-                  {"surface_area_mm2", info.surface_area_mm2}});
+                  {"surface_area_mm2", info.surface_area_mm2}};
+      if (info.cad.read) j["cad"] = cad_json({info.cad}).front();
+      print_json(j);
     } else {
       print_text(info);
+      if (info.cad.read) print_cad_bodies(info.cad);
     }
     if (info.points == 0) throw Error(info.path + ": holds no points");
     if (info.non_finite > 0) {
@@ -64,12 +73,27 @@ class InfoCommand : public Command {
     if (info.faces > 0) std::printf("area mm2     %.4f\n", info.surface_area_mm2);
   }
 
+  // The CAD file's bodies, one line each, and the tessellation the jobs would use.
+  static void print_cad_bodies(const CadReport& cad) {
+    std::printf("cad unit     %s (x%g to mm)\n", cad.file_unit.c_str(), cad.mm_per_file_unit);
+    std::printf("tessellation deflection %g mm, angle %.4g deg: %zu triangles from %zu faces\n", cad.deflection_mm,
+                cad.angular_deflection_rad * 180.0 / M_PI, cad.triangles, cad.faces);
+    for (std::size_t i = 0; i < cad.bodies.size(); ++i) {
+      const CadBody& b = cad.bodies[i];
+      std::printf("body %-7zu %s, %zu faces, %zu triangles, box %.4f %.4f %.4f .. %.4f %.4f %.4f mm", i + 1,
+                  to_string(b.kind), b.faces, b.triangles, b.box_min_mm[0], b.box_min_mm[1], b.box_min_mm[2],
+                  b.box_max_mm[0], b.box_max_mm[1], b.box_max_mm[2]);
+      if (b.kind == CadBodyKind::kSolid) std::printf(", volume %.4f mm3%s", b.volume_mm3, b.flipped ? " (flipped)" : "");
+      std::printf("\n");
+    }
+  }
+
   InfoOptions options_;
   bool json_ = false;
 };
 
 }  // namespace
 
-CONFORM_COMMAND(InfoCommand, "info", "Show what a cloud or mesh file holds (points, faces, normals, box, NaNs)")
+CONFORM_COMMAND(InfoCommand, "info", "Show what a cloud, mesh or CAD file holds (points, faces, normals, box, NaNs; CAD bodies)")
 
 }  // namespace conform::app

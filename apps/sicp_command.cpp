@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/sicp.h"
@@ -92,6 +93,7 @@ class SicpCommand : public Command {
     c.add_option("--out-rows", options_.out_rows_path,
                  "Write each row's correction (across the edge, along the tool axis, along the path, mm) and its "
                  "confidence (CSV), with the trajectory");
+    add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
   }
@@ -111,11 +113,15 @@ class SicpCommand : public Command {
     o.sicp.joint_refinement = !no_joint_;
     o.normals.from_scan = normals_ == "scan";
     options_.progress = stderr_progress(quiet_);
+    options_.cad.progress = options_.progress;
     const SicpJobResult r = run_sicp(options_);
     warn_all(r.warnings);
     if (json_) {
-      print_json(summary(r));
+      nlohmann::json j = summary(r);
+      j["cad"] = cad_json(r.cad_inputs);
+      print_json(j);
     } else {
+      print_cad_text(r.cad_inputs);
       print_text(r);
     }
     if (!r.compensation.trusted) {

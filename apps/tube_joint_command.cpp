@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/tube_joint.h"
@@ -93,6 +94,7 @@ class TubeJointCommand : public Command {
                  "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame)");
     c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses");
     c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses");
+    add_cad_options(c, o_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
     step_mm_option_ = step_mm;
@@ -122,11 +124,15 @@ class TubeJointCommand : public Command {
     request.weld_angle_deg = weld_deg_;
     TubeJointJobOptions o = tube_joint_job_options(request);
     o.solve.progress = stderr_progress(quiet_ || json_);
+    o.cad.progress = o.solve.progress;
     const TubeJointJobResult r = run_tube_joint(o);
     const TubeJointSolution& s = r.solution;
     if (json_) {
-      print_json(tube_joint_json(r));
+      nlohmann::json j = tube_joint_json(r);
+      j["cad"] = cad_json(r.cad_inputs);
+      print_json(j);
     } else {
+      print_cad_text(r.cad_inputs);
       print_text(r);
     }
     for (const std::string& w : s.warnings) warn("tube-joint: " + w);

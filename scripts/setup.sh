@@ -16,7 +16,9 @@ shift || true
 
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libpcl-dev libceres-dev libopencv-dev
           libgtest-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev
-          pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed)  # python/ (docs/python.md)
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed  # python/ (docs/python.md)
+          # OpenCASCADE for STEP/IGES references (the cad plugin, LGPL-2.1 with exception, linked dynamically)
+          libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

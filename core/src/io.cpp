@@ -15,9 +15,9 @@ namespace conform {
 
 namespace {
 
-enum class Format { kPly, kStl, kObj, kPointList, kPcd };
+enum class Format { kPly, kStl, kObj, kPointList, kPcd, kCad };
 
-constexpr const char* kSupported = ".ply .stl .obj .pcd .xyz .txt .asc .csv";
+constexpr const char* kSupported = ".ply .stl .obj .pcd .xyz .txt .asc .csv; CAD .step .stp .iges .igs";
 
 Format format_of(const std::string& path) {
   const std::string extension = file_extension(path);
@@ -25,6 +25,7 @@ Format format_of(const std::string& path) {
   if (extension == ".stl") return Format::kStl;
   if (extension == ".obj") return Format::kObj;
   if (extension == ".pcd") return Format::kPcd;
+  if (is_cad_file(path)) return Format::kCad;
   if (extension == ".xyz" || extension == ".txt" || extension == ".asc" || extension == ".csv") {
     return Format::kPointList;
   }
@@ -34,7 +35,7 @@ Format format_of(const std::string& path) {
   throw Error(path + ": unknown file extension '" + extension + "' (supported: " + kSupported + ")");
 }
 
-Mesh read_by_format(const std::string& path, ReadReport& report) {
+Mesh read_by_format(const std::string& path, const ReadOptions& options, ReadReport& report) {
   switch (format_of(path)) {
     case Format::kPly:
       return detail::read_ply(path, report);
@@ -46,6 +47,8 @@ Mesh read_by_format(const std::string& path, ReadReport& report) {
       return detail::read_point_list(path, report);
     case Format::kPcd:
       return detail::read_pcd(path, report);
+    case Format::kCad:
+      return read_cad(path, options.cad, &report.cad, &report.warnings);
   }
   throw Error(path + ": unsupported format");
 }
@@ -124,7 +127,7 @@ std::string file_extension(const std::string& path) {
 Mesh read_geometry(const std::string& path, const ReadOptions& options, ReadReport* report) {
   ReadReport local;
   ReadReport& out = report != nullptr ? *report : local;
-  Mesh mesh = read_by_format(path, out);
+  Mesh mesh = read_by_format(path, options, out);
   apply_non_finite_policy(path, options.non_finite, mesh, out);
   return mesh;
 }
@@ -146,6 +149,8 @@ void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o
   const Format format = format_of(path);
   check_consistent(mesh, path.c_str());
   switch (format) {
+    case Format::kCad:
+      throw Error(path + ": conform reads STEP and IGES but does not write them (write .ply, .stl or .obj)");
     case Format::kPly:
       return detail::write_ply(path, mesh, options);
     case Format::kStl:
@@ -166,6 +171,8 @@ void write_cloud(const std::string& path, const Cloud& cloud, const WriteOptions
   const Format format = format_of(path);
   check_consistent(cloud, path.c_str());
   switch (format) {
+    case Format::kCad:
+      throw Error(path + ": conform reads STEP and IGES but does not write them (write .ply or .pcd)");
     case Format::kStl:
       throw Error(path + ": STL holds only triangles, not a point cloud (use .ply, .pcd or .xyz)");
     case Format::kPcd:

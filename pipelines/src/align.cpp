@@ -168,11 +168,13 @@ AlignResult run_align(const AlignOptions& options) {
   result.init = options.init;
 
   report(options.progress, "read scan", 0.0);
-  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.mm_per_unit, result.warnings);
+  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.mm_per_unit, result.warnings,
+                                                    options.cad, &result.cad_inputs);
   report(options.progress, "read scan", 1.0);
   report(options.progress, "read reference", 0.0);
   Mesh reference_mesh =
-      detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit, result.warnings);
+      detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit, result.warnings,
+                                 options.cad, &result.cad_inputs);
   report(options.progress, "read reference", 1.0);
   if (options.max_size_ratio > 0.0) {
     detail::check_sizes(scan_mesh, reference_mesh, options.scan_path, options.reference_path, options.max_size_ratio);

@@ -14,6 +14,7 @@
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
 #include "conform/core/units.h"
+#include "cad_inputs.h"
 
 namespace conform::detail {
 
@@ -60,9 +61,9 @@ bool parse_numbers(std::string line, std::vector<double>& out) {
 }  // namespace
 
 Mesh read_for_alignment(const std::string& path, const char* what, double mm_per_unit,
-                        std::vector<std::string>& warnings) {
-  ReadOptions read;
-  read.non_finite = NonFinitePolicy::kDrop;
+                        std::vector<std::string>& warnings, const CadReadOptions& cad,
+                        std::vector<CadReport>* cad_reports) {
+  const ReadOptions read = read_options(NonFinitePolicy::kDrop, cad);
   ReadReport report;
   Mesh mesh = read_geometry(path, read, &report);
   for (const std::string& w : report.warnings) warnings.push_back(w);  // they name the file
@@ -70,7 +71,8 @@ Mesh read_for_alignment(const std::string& path, const char* what, double mm_per
     throw Error(path + ": the " + std::string(what) + " holds no points" +
                 (report.non_finite_points > 0 ? " (all had NaN or infinite coordinates)" : ""));
   }
-  if (mm_per_unit != 1.0) scale_in_place(mesh, mm_per_unit);
+  if (cad_reports != nullptr) keep_cad_report(report, *cad_reports);
+  if (mm_per_unit != 1.0 && !cad_keeps_its_units(report, mm_per_unit, warnings)) scale_in_place(mesh, mm_per_unit);
   return mesh;
 }
 

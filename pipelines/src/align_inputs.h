@@ -7,15 +7,18 @@
 
 #include <Eigen/Core>
 
+#include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/registration/point_pairs.h"
 
 namespace conform::detail {
 
 // A file's geometry in mm with non-finite points dropped (a warning says how many); throws conform::Error naming
-// the file when it holds no points.
+// the file when it holds no points. A CAD file is tessellated with `cad` (its report appended to cad_reports) and
+// keeps its own units.
 Mesh read_for_alignment(const std::string& path, const char* what, double mm_per_unit,
-                        std::vector<std::string>& warnings);
+                        std::vector<std::string>& warnings, const CadReadOptions& cad = {},
+                        std::vector<CadReport>* cad_reports = nullptr);
 
 // The points with exact duplicates merged, in first-seen order; `merged` counts the points removed.
 std::vector<Eigen::Vector3d> unique_points(const std::vector<Eigen::Vector3d>& points, std::size_t* merged);

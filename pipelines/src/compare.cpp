@@ -12,6 +12,7 @@
 #include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/core/units.h"
+#include "cad_inputs.h"
 
 namespace conform {
 
@@ -37,14 +38,20 @@ std::string invalid_reason(const CompareOptions& o) {
   return "";
 }
 
-Mesh read_input(const std::string& path, double mm_per_unit, const char* stage, const ProgressFn& progress,
-                std::vector<std::string>& warnings) {
+Mesh read_input(const std::string& path, const CompareOptions& options, const char* stage,
+                CompareResult& result) {
+  const double mm_per_unit = options.mm_per_unit;
+  const ProgressFn& progress = options.progress;
+  std::vector<std::string>& warnings = result.warnings;
   report(progress, stage, 0.0);
   ReadReport report_;
-  Mesh mesh = read_geometry(path, {}, &report_);
+  Mesh mesh = read_geometry(path, detail::read_options(NonFinitePolicy::kReject, options.cad), &report_);
   warnings.insert(warnings.end(), report_.warnings.begin(), report_.warnings.end());
   if (mesh.vertices.empty()) throw Error(path + ": holds no points");
-  if (mm_per_unit != 1.0) scale_in_place(mesh, mm_per_unit);
+  detail::keep_cad_report(report_, result.cad_inputs);
+  if (mm_per_unit != 1.0 && !detail::cad_keeps_its_units(report_, mm_per_unit, warnings)) {
+    scale_in_place(mesh, mm_per_unit);
+  }
   report(progress, stage, 1.0);
   return mesh;
 }
@@ -108,14 +115,13 @@ CompareResult run_compare(const CompareOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw Error(why);
   CompareResult result;
-  Mesh scan = read_input(options.scan_path, options.mm_per_unit, "read scan", options.progress, result.warnings);
+  Mesh scan = read_input(options.scan_path, options, "read scan", result);
   if (!options.transform_path.empty()) {
     result.T_ref_scan = read_transform(options.transform_path);
     result.T_ref_scan.translation() *= options.mm_per_unit;
     scan = transformed(scan, result.T_ref_scan);
   }
-  const Mesh reference =
-      read_input(options.reference_path, options.mm_per_unit, "read reference", options.progress, result.warnings);
+  const Mesh reference = read_input(options.reference_path, options, "read reference", result);
   result.scan_points = scan.vertices.size();
   result.reference_points = reference.vertices.size();
   result.reference_faces = reference.faces.size();

@@ -8,6 +8,7 @@
 #include "conform/core/error.h"
 #include "conform/core/io.h"
 #include "conform/core/normals.h"
+#include "cad_inputs.h"
 
 namespace conform {
 namespace {
@@ -81,11 +82,13 @@ FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw Error("fit-cylinder: " + why);
   ReadReport report;
-  const Mesh mesh = read_geometry(options.input_path, ReadOptions{}, &report);  // NaN coordinates: an error
+  const ReadOptions read = detail::read_options(NonFinitePolicy::kReject, options.cad);  // NaN: an error
+  const Mesh mesh = read_geometry(options.input_path, read, &report);
   FitCylinderJobResult result;
   result.input_path = options.input_path;
   result.points = mesh.vertices.size();
   result.warnings = report.warnings;
+  detail::keep_cad_report(report, result.cad_inputs);
   try {
     const std::vector<Eigen::Vector3d> normals = normals_for(mesh, options, &result.normals);
     result.fit = fit_cylinder(mesh.vertices, normals, options.fit);

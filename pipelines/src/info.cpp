@@ -8,6 +8,7 @@ namespace conform {
 InfoResult run_info(const InfoOptions& options) {
   ReadOptions read;
   read.non_finite = NonFinitePolicy::kKeep;  // count them instead of refusing the file
+  read.cad = options.cad;
   ReadReport report;
   const Mesh mesh = read_geometry(options.path, read, &report);
 
@@ -21,6 +22,7 @@ InfoResult run_info(const InfoOptions& options) {
   result.box = bounding_box(mesh);
   result.surface_area_mm2 = surface_area(mesh);
   result.warnings = report.warnings;
+  result.cad = report.cad;
   return result;
 }
 

@@ -9,6 +9,7 @@
 #include "conform/core/io.h"
 #include "conform/core/mesh_boundary.h"
 #include "conform/core/nearest_neighbors.h"
+#include "cad_inputs.h"
 
 namespace conform {
 namespace {
@@ -158,7 +159,10 @@ SicpJobResult run_sicp(const SicpJobOptions& options) {
   Mesh surface;
   bool has_surface = false;
   if (!options.surface_path.empty()) {
-    surface = read_geometry(options.surface_path, read);
+    ReadReport surface_report;
+    surface = read_geometry(options.surface_path, detail::read_options(read.non_finite, options.cad), &surface_report);
+    for (const std::string& w : surface_report.warnings) result.warnings.push_back(w);
+    detail::keep_cad_report(surface_report, result.cad_inputs);
     has_surface = true;
   }
   Polyline contour;

@@ -16,6 +16,7 @@
 #include "conform/core/transform_io.h"
 #include "conform/registration/tube_reference.h"
 #include "conform/toolpath/intersection_graph.h"
+#include "cad_inputs.h"
 
 namespace conform {
 namespace {
@@ -288,8 +289,12 @@ TubeJointJobResult run_tube_joint(const TubeJointJobOptions& options) {
   if (!options.IsValid(&why)) throw Error("tube-joint: " + why);
   TubeJointJobResult result;
   result.T_S_L = options.leg_pose_path.empty() ? T_L_S(options.spec).inverse() : read_transform(options.leg_pose_path);
-  Mesh leg = read_mesh(options.leg_path);
-  Mesh stub = read_mesh(options.stub_path);
+  const ReadOptions read = detail::read_options(NonFinitePolicy::kReject, options.cad);
+  ReadReport leg_report, stub_report;
+  Mesh leg = read_mesh(options.leg_path, read, &leg_report);
+  Mesh stub = read_mesh(options.stub_path, read, &stub_report);
+  detail::keep_cad_report(leg_report, result.cad_inputs);
+  detail::keep_cad_report(stub_report, result.cad_inputs);
   if (!leg.has_faces()) throw Error(options.leg_path + ": the leg must be a triangle mesh (it has no faces)");
   if (!stub.has_faces()) throw Error(options.stub_path + ": the stub must be a triangle mesh (it has no faces)");
   if (!options.leg_markers_path.empty()) {

@@ -5,6 +5,7 @@
 //   .obj  meshes (v, vn, f; polygons fan-triangulated)
 //   .pcd  clouds (ascii, binary, binary_compressed; conform's own reader and writer), normals as normal_x/y/z
 //   .xyz .txt .asc .csv  point lists: whitespace- or comma-separated, optional header line naming x y z nx ny nz
+//   .step .stp .iges .igs  CAD, read only: tessellated by the cad plugin (cad.h), in mm, outside positive
 // Every reader checks counts against the file's size before allocating and reports errors as conform::Error
 // naming the file and the line, element or byte where the problem is. Writers are byte-deterministic (the same
 // input gives the same bytes: no dates in headers) and atomic.
@@ -16,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "conform/core/cad.h"
 #include "conform/core/cloud.h"
 #include "conform/core/mesh.h"
 
@@ -29,13 +31,18 @@ enum class NonFinitePolicy {
 };
 
 struct ReadOptions {
-  NonFinitePolicy non_finite = NonFinitePolicy::kReject;
+  // Implicit, so that `read_mesh(path, {NonFinitePolicy::kDrop})` stays a complete initialisation.
+  ReadOptions(NonFinitePolicy policy = NonFinitePolicy::kReject) : non_finite(policy) {}  // NOLINT(runtime/explicit)
+
+  NonFinitePolicy non_finite;
+  CadReadOptions cad;  // .step .stp .iges .igs: the tessellation (deflection) and its progress
 };
 
 // What a reader noticed that was not worth an error (dropped points, ignored properties); apps print them.
 struct ReadReport {
   std::vector<std::string> warnings;
   std::size_t non_finite_points = 0;  // found in the file (dropped or kept according to the policy)
+  CadReport cad;                      // cad.read: the file was CAD (units, bodies, deflection, triangles)
 };
 
 enum class Encoding { kBinary, kAscii };

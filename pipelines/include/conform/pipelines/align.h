@@ -15,6 +15,7 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/cad.h"
 #include "conform/core/progress.h"
 #include "conform/registration/coarse.h"
 #include "conform/registration/icp.h"
@@ -33,8 +34,9 @@ const char* to_string(AlignInit init);
 
 struct AlignOptions {
   std::string scan_path;       // cloud or mesh, any format read_geometry reads
-  std::string reference_path;  // mesh (point-to-surface possible) or cloud
-  double mm_per_unit = 1.0;    // millimetres per unit of both files and of the pairs file (1000 for metres)
+  std::string reference_path;  // mesh (point-to-surface possible) or cloud; or CAD (.step .stp .iges .igs)
+  double mm_per_unit = 1.0;    // millimetres per unit of both files and of the pairs file (1000 for metres); not CAD
+  CadReadOptions cad;          // a CAD reference: its tessellation (core/cad.h)
 
   // Empty: point-to-surface against a mesh, point-to-plane against a cloud.
   std::optional<IcpMethod> method;
@@ -107,6 +109,7 @@ struct AlignResult {
   std::size_t reference_faces = 0;
   AlignVerdict verdict;               // whether to trust icp.T_ref_scan; outputs are written unless kNo
   std::vector<std::string> warnings;  // dropped points, merged duplicates, ambiguous starts
+  std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
   std::string transform_path;         // written; empty when not
   std::string aligned_path;
 };

@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/core/progress.h"
 #include "conform/evaluation/deviation.h"
@@ -33,9 +34,10 @@ using DeviationHistogramFn =
 
 struct CompareOptions {
   std::string scan_path;       // cloud or mesh, any format read_geometry reads
-  std::string reference_path;  // mesh (signed deviation) or cloud (unsigned)
+  std::string reference_path;  // mesh or CAD, .step .stp .iges .igs (signed deviation), or cloud (unsigned)
+  CadReadOptions cad;          // a CAD reference: its tessellation (core/cad.h)
   std::string transform_path;  // T_ref_scan (4x4 text) applied to the scan; empty: the scan is in the reference frame
-  double mm_per_unit = 1.0;    // millimetres per unit of every input (coordinates and the transform's translation)
+  double mm_per_unit = 1.0;    // millimetres per unit of every input (coordinates, the transform's translation); not CAD
   std::optional<double> tolerance_mm;  // the band +-t for the in/above/below shares; none by default
   double max_distance_mm = std::numeric_limits<double>::infinity();  // farther scan points are unmatched (NaN)
 
@@ -59,6 +61,7 @@ struct CompareResult {
   DeviationResult deviation;                                     // per scan point, in the scan's order
   DeviationStatistics statistics;
   std::vector<std::string> warnings;  // the readers' (ignored properties, ...) and doubts about units or placement
+  std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
   std::string out_deviation_path;     // the files written (empty when not asked for)
   std::string out_histogram_path;
 };

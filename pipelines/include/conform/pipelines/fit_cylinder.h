@@ -9,12 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "conform/core/cad.h"
 #include "conform/fitting/cylinder.h"
 
 namespace conform {
 
 struct FitCylinderJobOptions {
-  std::string input_path;  // .ply .stl .obj .pcd .xyz .txt .asc .csv
+  std::string input_path;  // .ply .stl .obj .pcd .xyz .txt .asc .csv; CAD .step .stp .iges .igs
+  CadReadOptions cad;      // a CAD input: its tessellation (core/cad.h)
   CylinderFitOptions fit;  // threshold, radius bounds, axis prior, seed, normal_neighbors, progress ...
   std::string out_path;    // CSV to write, whole or not at all; empty: none
 
@@ -31,6 +33,7 @@ struct FitCylinderJobResult {
   std::size_t points = 0;
   NormalSource normals = NormalSource::kFile;
   std::vector<std::string> warnings;  // what the reader noticed
+  std::vector<CadReport> cad_inputs;  // the input, when it was CAD
   std::string out_path;               // the CSV written; empty when none was asked for
 };
 

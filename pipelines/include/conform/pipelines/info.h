@@ -5,12 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "conform/core/cad.h"
 #include "conform/core/geometry.h"
 
 namespace conform {
 
 struct InfoOptions {
   std::string path;
+  CadReadOptions cad;  // a CAD file: the tessellation it would be read with
 };
 
 struct InfoResult {
@@ -23,6 +25,7 @@ struct InfoResult {
   BoundingBox box;             // over the finite points, mm
   double surface_area_mm2 = 0.0;
   std::vector<std::string> warnings;
+  CadReport cad;  // cad.read: a CAD file (units, bodies, the tessellation used)
 
   // A file conform can use as it is: points present, all finite.
   bool usable() const { return points > 0 && non_finite == 0; }

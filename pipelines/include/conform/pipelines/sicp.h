@@ -16,6 +16,7 @@
 #include "conform/compensation/sicp_checks.h"
 #include "conform/compensation/trajectory.h"
 #include "conform/compensation/trajectory_error.h"
+#include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/core/polyline.h"
 #include "conform/core/progress.h"
@@ -58,7 +59,8 @@ struct SicpJobOptions {
   std::string contour_path;         // .csv (x_mm,y_mm,z_mm, ordered) or a mesh (.ply .stl .obj) whose boundary is taken
   std::string scan_path;            // cloud or mesh
   std::string trajectory_path;      // .csv x_mm,y_mm,z_mm,nx,ny,nz
-  std::string surface_path;         // optional nominal surface mesh; a mesh contour is its own surface
+  std::string surface_path;         // optional nominal surface mesh or CAD; a mesh contour is its own surface
+  CadReadOptions cad;               // a CAD surface: its tessellation (core/cad.h)
   std::string truth_path;           // optional ground-truth trajectory, same columns and rows: errors reported
   std::string out_trajectory_path;  // optional
   std::string out_rows_path;        // optional: per-row correction split and confidence (CSV), written with the above
@@ -77,6 +79,7 @@ struct SicpJobResult {
   std::size_t surface_faces = 0;
   std::optional<TrajectoryError> error;  // when a truth was given
   std::vector<std::string> warnings;
+  std::vector<CadReport> cad_inputs;  // the surface, when it was CAD
   std::string out_trajectory_path;  // written; empty when not
   std::string out_rows_path;        // written; empty when not
 };

@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/core/progress.h"
 #include "conform/registration/tube_reference.h"
@@ -92,6 +93,7 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
 struct TubeJointJobOptions {
   std::string leg_path;       // leg outer surface mesh, in L
   std::string stub_path;      // stub inner surface mesh, in S
+  CadReadOptions cad;         // leg or stub as CAD (.step .stp .iges .igs): the tessellation (core/cad.h)
   TubeJointSpec spec;         // pitch, offset, protrusion: T_L_S (used when leg_pose_path is empty)
   std::string leg_pose_path;  // 4x4 text T_S_L (the leg's pose in S), instead of the spec
   // Markers (registration/tube_reference.h): CSV `x_mm,y_mm,z_mm,ref_x_mm,ref_y_mm,ref_z_mm`, a marker's position in
@@ -113,6 +115,7 @@ struct TubeJointJobResult {
   Eigen::Isometry3d T_S_L = Eigen::Isometry3d::Identity();
   std::size_t leg_faces = 0;
   std::size_t stub_faces = 0;
+  std::vector<CadReport> cad_inputs;  // leg and stub, those that were CAD
   std::vector<std::string> written;  // files written (none when !solution.ok)
   // Per marker file given: |T * marker - known position| of each marker, mm (empty when none was given).
   std::vector<double> leg_marker_residuals_mm;

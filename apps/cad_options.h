@@ -1,0 +1,26 @@
+#pragma once
+// The CAD options every command that reads a reference surface shares (align, compare, sicp --surface, tube-joint,
+// fit-cylinder, info), and how a CAD read is reported: one line of text, one JSON object per file.
+
+#include <cstdio>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "conform/core/cad.h"
+
+namespace conform::app {
+
+// --cad-deflection (mm) and --cad-angle-deg. The command sets cad.progress (stages "read CAD", "tessellate CAD").
+void add_cad_options(CLI::App& command, CadReadOptions& cad);
+
+// "cad           part.step: STEP in millimetre (x1 to mm), 1 bodies (1 solids), 12 faces -> 468 triangles ..."
+void print_cad_text(const std::vector<CadReport>& reports, std::FILE* out = stdout);
+
+// [{"file", "format", "file_unit", "mm_per_file_unit", "deflection_mm", "angular_deflection_deg", "faces",
+//   "triangles", "bodies": [{"kind", "faces", "triangles", "failed_faces", "box_min_mm", "box_max_mm",
+//   "volume_mm3", "flipped"}]}]
+nlohmann::json cad_json(const std::vector<CadReport>& reports);
+
+}  // namespace conform::app

@@ -1,0 +1,127 @@
+// STEP and IGES into one OpenCASCADE shape, in millimetres.
+
+#include <cctype>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_ProgressIndicator.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <TCollection_HAsciiString.hxx>
+
+#include "occt_progress.h"
+#include "occt_shape.h"
+
+namespace conform::cad {
+
+namespace {
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Millimetres per unit for the names STEP and IGES files use; 0 when unknown.
+double mm_per_unit_named(const std::string& name) {
+  const std::string u = upper(name);
+  if (u == "MM" || u == "MILLIMETRE" || u == "MILLIMETER") return 1.0;
+  if (u == "CM" || u == "CENTIMETRE" || u == "CENTIMETER") return 10.0;
+  if (u == "M" || u == "METRE" || u == "METER") return 1000.0;
+  if (u == "KM" || u == "KILOMETRE" || u == "KILOMETER") return 1e6;
+  if (u == "UM" || u == "MICRON" || u == "MICROMETRE" || u == "MICROMETER") return 1e-3;
+  if (u == "IN" || u == "INCH" || u == "INCHES") return 25.4;
+  if (u == "FT" || u == "FOOT" || u == "FEET") return 304.8;
+  if (u == "MI" || u == "MILE") return 1609344.0;
+  if (u == "MIL") return 0.0254;
+  if (u == "UIN" || u == "MICROINCH") return 2.54e-5;
+  return 0.0;
+}
+
+// IGES Global section, parameter 14 (unit flag).
+double mm_per_iges_unit_flag(int flag) {
+  switch (flag) {
+    case 1: return 25.4;
+    case 2: return 1.0;
+    case 4: return 304.8;
+    case 5: return 1609344.0;
+    case 6: return 1000.0;
+    case 7: return 1e6;
+    case 8: return 0.0254;
+    case 9: return 1e-3;
+    case 10: return 10.0;
+    case 11: return 2.54e-5;
+    default: return 0.0;
+  }
+}
+
+// OpenCASCADE prints its traces on stdout, which is the JSON channel: no printers.
+void silence_messages() { Message::DefaultMessenger()->ChangePrinters().Clear(); }
+
+ReadShape read_step(const conform_cad_request& request, const ProgressSink& progress) {
+  STEPControl_Reader reader;
+  std::istringstream stream(std::string(request.bytes, request.size));
+  if (reader.ReadStream(request.path, stream) != IFSelect_RetDone) {
+    throw std::runtime_error("OpenCASCADE cannot parse it as STEP (ISO 10303-21)");
+  }
+  ReadShape out;
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.FileUnits(lengths, angles, solid_angles);
+  out.file_unit = lengths.IsEmpty() ? "MM" : lengths.First().ToCString();
+  for (int i = 2; i <= lengths.Length(); ++i) {
+    if (upper(lengths.Value(i).ToCString()) != upper(out.file_unit)) {
+      throw std::runtime_error(std::string("it mixes length units (") + out.file_unit + " and " +
+                               lengths.Value(i).ToCString() + ")");
+    }
+  }
+  out.mm_per_file_unit = mm_per_unit_named(out.file_unit);
+  const Handle(ProgressIndicator) indicator = new ProgressIndicator(progress, "read CAD");
+  reader.TransferRoots(indicator->Start());
+  if (reader.NbShapes() == 0) throw std::runtime_error("no shapes could be transferred from it");
+  out.shape = reader.OneShape();
+  return out;
+}
+
+ReadShape read_iges(const conform_cad_request& request, const ProgressSink& progress) {
+  IGESControl_Reader reader;
+  if (reader.ReadFile(request.path) != IFSelect_RetDone) {
+    throw std::runtime_error("OpenCASCADE cannot parse it as IGES");
+  }
+  ReadShape out;
+  const IGESData_GlobalSection& global = reader.IGESModel()->GlobalSection();
+  const Handle(TCollection_HAsciiString) name = global.UnitName();
+  out.file_unit = name.IsNull() ? "" : name->ToCString();
+  out.mm_per_file_unit = mm_per_iges_unit_flag(global.UnitFlag());
+  if (out.mm_per_file_unit == 0.0) out.mm_per_file_unit = mm_per_unit_named(out.file_unit);
+  if (out.file_unit.empty()) out.file_unit = "flag " + std::to_string(global.UnitFlag());
+  const Handle(ProgressIndicator) indicator = new ProgressIndicator(progress, "read CAD");
+  reader.TransferRoots(indicator->Start());
+  if (reader.NbShapes() == 0) throw std::runtime_error("no shapes could be transferred from it");
+  out.shape = reader.OneShape();
+  return out;
+}
+
+}  // namespace
+
+ReadShape read_shape(const conform_cad_request& request, const ProgressSink& progress) {
+  silence_messages();
+  // Lengths in millimetres whatever the file's unit: OpenCASCADE scales on transfer.
+  Interface_Static::SetCVal("xstep.cad.unit", "MM");
+  progress("read CAD", 0.0);
+  ReadShape out = request.format == CONFORM_CAD_STEP ? read_step(request, progress) : read_iges(request, progress);
+  if (out.shape.IsNull()) throw std::runtime_error("it holds no geometry");
+  if (out.mm_per_file_unit == 0.0) {
+    throw std::runtime_error("its length unit '" + out.file_unit + "' is not one conform knows");
+  }
+  progress("read CAD", 1.0);
+  return out;
+}
+
+}  // namespace conform::cad

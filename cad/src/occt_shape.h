@@ -1,0 +1,46 @@
+#pragma once
+// The plugin's two steps over OpenCASCADE: read a STEP or IGES file into one shape (placements applied, lengths in
+// mm), and tessellate that shape's bodies into one triangle list wound outside-positive.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <TopoDS_Shape.hxx>
+
+#include "conform/core/cad_plugin_abi.h"
+
+namespace conform::cad {
+
+// Reports to the request's callback (stage, fraction); throttled to steps of 1%.
+struct ProgressSink {
+  conform_cad_progress_fn fn = nullptr;
+  void* context = nullptr;
+  void operator()(const char* stage, double fraction) const {
+    if (fn != nullptr) fn(context, stage, fraction);
+  }
+};
+
+struct ReadShape {
+  TopoDS_Shape shape;      // every root transferred, as one compound
+  std::string file_unit;   // as the file names it
+  double mm_per_file_unit = 1.0;
+};
+
+// Throws std::runtime_error with the reason (without the path) when the file is not STEP/IGES OpenCASCADE can read
+// or holds no geometry.
+ReadShape read_shape(const conform_cad_request& request, const ProgressSink& progress);
+
+struct Tessellation {
+  std::vector<double> vertices;     // x y z, mm
+  std::vector<std::int32_t> triangles;
+  std::vector<conform_cad_body> bodies;
+  std::vector<std::string> warnings;
+};
+
+// Throws std::runtime_error when the shape has no faces or no face could be tessellated.
+Tessellation tessellate(const TopoDS_Shape& shape, double deflection_mm, double angular_deflection_rad,
+                        const ProgressSink& progress);
+
+}  // namespace conform::cad

@@ -1,0 +1,199 @@
+// CAD files through the cad plugin: the file is checked here (a regular file, the format's signature) before the
+// plugin, and OpenCASCADE behind it, is loaded at all.
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "conform/core/cad.h"
+#include "conform/core/cad_plugin_abi.h"
+#include "conform/core/error.h"
+#include "conform/core/input_file.h"
+#include "conform/core/io.h"
+#include "conform/core/mesh_weld.h"
+#include "conform/core/plugin.h"
+
+namespace conform {
+
+namespace {
+
+bool is_step_extension(const std::string& extension) { return extension == ".step" || extension == ".stp"; }
+
+// STEP (ISO 10303-21) files start with "ISO-10303-21;" (after an optional byte-order mark and blank space).
+bool looks_like_step(const std::string& bytes) {
+  std::size_t i = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+  return bytes.compare(i, 12, "ISO-10303-21") == 0;
+}
+
+// IGES files are 80-column records; the first is a Start (S) or, rarely, a Flag (F) record: column 73 says which.
+bool looks_like_iges(const std::string& bytes) {
+  if (bytes.size() < 73) return false;
+  const char section = bytes[72];
+  const std::size_t newline = bytes.find('\n');
+  return (section == 'S' || section == 'F' || section == 'C') && (newline == std::string::npos || newline >= 72);
+}
+
+struct ResultGuard {
+  conform_cad_free_fn free_result;
+  conform_cad_result* result;
+  ~ResultGuard() { free_result(result); }
+};
+
+void forward_progress(void* context, const char* stage, double fraction) {
+  const ProgressFn& progress = *static_cast<const ProgressFn*>(context);
+  report(progress, stage, fraction);
+}
+
+std::string trimmed_unit(const char* unit) {
+  std::string out(unit, strnlen(unit, sizeof(conform_cad_result::file_unit)));
+  while (!out.empty() && (out.back() == ' ' || out.back() == '\'')) out.pop_back();
+  while (!out.empty() && (out.front() == ' ' || out.front() == '\'')) out.erase(out.begin());
+  return out.empty() ? "unknown" : out;
+}
+
+Mesh mesh_of(const conform_cad_result& r) {
+  Mesh mesh;
+  mesh.vertices.reserve(r.vertex_count);
+  for (std::size_t i = 0; i < r.vertex_count; ++i) {
+    mesh.vertices.emplace_back(r.vertices[3 * i], r.vertices[3 * i + 1], r.vertices[3 * i + 2]);
+  }
+  mesh.faces.reserve(r.triangle_count);
+  for (std::size_t i = 0; i < r.triangle_count; ++i) {
+    mesh.faces.push_back({r.triangles[3 * i], r.triangles[3 * i + 1], r.triangles[3 * i + 2]});
+  }
+  return mesh;
+}
+
+CadBody body_of(const conform_cad_body& b) {
+  CadBody body;
+  body.kind = b.kind == CONFORM_CAD_SOLID        ? CadBodyKind::kSolid
+              : b.kind == CONFORM_CAD_OPEN_SHELL ? CadBodyKind::kOpenShell
+                                                 : CadBodyKind::kFreeFaces;
+  body.faces = b.faces;
+  body.triangles = b.triangles;
+  body.failed_faces = b.failed_faces;
+  for (int k = 0; k < 3; ++k) {
+    body.box_min_mm[static_cast<std::size_t>(k)] = b.box_min_mm[k];
+    body.box_max_mm[static_cast<std::size_t>(k)] = b.box_max_mm[k];
+  }
+  body.volume_mm3 = b.volume_mm3;
+  body.flipped = b.flipped != 0;
+  return body;
+}
+
+}  // namespace
+
+bool CadReadOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (!(std::isfinite(deflection_mm) && deflection_mm >= 1e-4 && deflection_mm <= 10.0)) {
+    why = "the CAD deflection must be between 0.0001 and 10 mm, not " + std::to_string(deflection_mm);
+  } else if (!(std::isfinite(angular_deflection_rad) && angular_deflection_rad >= 0.0)) {
+    why = "the CAD angular deflection must be >= 0 rad";
+  }
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+double CadReadOptions::angular_deflection() const {
+  if (angular_deflection_rad > 0.0) return angular_deflection_rad;
+  // The sagitta of a chord through angle a on radius r is r (1 - cos(a / 2)); r = 1 mm.
+  const double r_mm = 1.0;
+  return std::min(0.5, 2.0 * std::acos(1.0 - std::min(deflection_mm / r_mm, 1.0)));
+}
+
+const char* to_string(CadBodyKind kind) {
+  switch (kind) {
+    case CadBodyKind::kSolid:
+      return "solid";
+    case CadBodyKind::kOpenShell:
+      return "open shell";
+    case CadBodyKind::kFreeFaces:
+      return "free faces";
+  }
+  return "?";
+}
+
+std::string CadReport::summary() const {
+  std::size_t solids = 0;
+  for (const CadBody& b : bodies) solids += b.kind == CadBodyKind::kSolid ? 1 : 0;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "%s in %s (x%g to mm), %zu bodies (%zu solids), %zu faces -> %zu triangles at deflection %g mm, "
+                "%.4g rad",
+                format.c_str(), file_unit.c_str(), mm_per_file_unit, bodies.size(), solids, faces, triangles,
+                deflection_mm, angular_deflection_rad);
+  return path + ": " + text;
+}
+
+bool is_cad_file(const std::string& path) {
+  const std::string e = file_extension(path);
+  return is_step_extension(e) || e == ".iges" || e == ".igs";
+}
+
+Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport* report_out,
+              std::vector<std::string>* warnings) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(path + ": " + why);
+  const std::string bytes = read_input_file(path);
+  const bool step = is_step_extension(file_extension(path));
+  if (step && !looks_like_step(bytes)) throw Error(path + ": not a STEP file (it does not start with ISO-10303-21)");
+  if (!step && !looks_like_iges(bytes)) {
+    throw Error(path + ": not an IGES file (its first line is not an 80-column Start record, 'S' in column 73)");
+  }
+  const Plugin& plugin = Plugin::load("conform_cad");
+  auto* read = plugin.symbol<int(const conform_cad_request*, conform_cad_result*)>("conform_cad_read");
+  auto* free_result = plugin.symbol<void(conform_cad_result*)>("conform_cad_free");
+
+  conform_cad_request request{};
+  request.abi_version = CONFORM_CAD_ABI_VERSION;
+  request.path = path.c_str();
+  request.bytes = bytes.data();
+  request.size = bytes.size();
+  request.format = step ? CONFORM_CAD_STEP : CONFORM_CAD_IGES;
+  request.deflection_mm = options.deflection_mm;
+  request.angular_deflection_rad = options.angular_deflection();
+  if (options.progress) {
+    request.progress = forward_progress;
+    request.progress_context = const_cast<ProgressFn*>(&options.progress);
+  }
+  conform_cad_result result{};
+  const ResultGuard guard{free_result, &result};
+  if (read(&request, &result) != 0) {
+    throw Error(path + ": " + (result.error != nullptr ? result.error : "the CAD plugin failed without a reason"));
+  }
+  MeshWeldResult welded = weld_coincident_vertices(mesh_of(result), path);
+
+  CadReport cad;
+  cad.read = true;
+  cad.path = path;
+  cad.format = step ? "STEP" : "IGES";
+  cad.file_unit = trimmed_unit(result.file_unit);
+  cad.mm_per_file_unit = result.mm_per_file_unit;
+  cad.deflection_mm = options.deflection_mm;
+  cad.angular_deflection_rad = request.angular_deflection_rad;
+  for (std::size_t i = 0; i < result.body_count; ++i) {
+    cad.bodies.push_back(body_of(result.bodies[i]));
+    cad.faces += cad.bodies.back().faces;
+  }
+  cad.triangles = welded.mesh.faces.size();
+  cad.vertices = welded.mesh.vertices.size();
+  if (warnings != nullptr && result.warnings != nullptr) {
+    std::string text = result.warnings;
+    for (std::size_t start = 0; start < text.size();) {
+      const std::size_t end = std::min(text.find('\n', start), text.size());
+      if (end > start) warnings->push_back(path + ": " + text.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  if (report_out != nullptr) *report_out = cad;
+  return std::move(welded.mesh);
+}
+
+}  // namespace conform

@@ -1,0 +1,98 @@
+#include "cad_shapes.h"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepTools.hxx>
+#include <GProp_GProps.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Pnt2d.hxx>
+
+namespace conform::test {
+
+TopoDS_Shape box_with_boss_and_hole() {
+  const TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 60.0, 40.0, 20.0).Shape();
+  const TopoDS_Shape boss = BRepPrimAPI_MakeBox(gp_Pnt(10, 10, 20), 20.0, 20.0, 10.0).Shape();
+  const TopoDS_Shape fused = BRepAlgoAPI_Fuse(block, boss).Shape();
+  const TopoDS_Shape drill = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(45, 20, -5), gp::DZ()), 6.0, 40.0).Shape();
+  return BRepAlgoAPI_Cut(fused, drill).Shape();
+}
+
+TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
+
+TopoDS_Shape torus() { return BRepPrimAPI_MakeTorus(gp_Ax2(gp::Origin(), gp::DZ()), 10.0, 3.0).Shape(); }
+
+void write_cad(const TopoDS_Shape& shape, const std::string& path, CadFormat format, const std::string& unit) {
+  Message::DefaultMessenger()->ChangePrinters().Clear();
+  bool ok = false;
+  if (format == CadFormat::kStep) {
+    STEPControl_Controller::Init();  // registers write.step.unit: setting it before is silently ignored
+    Interface_Static::SetCVal("write.step.unit", unit.c_str());
+    STEPControl_Writer writer;
+    ok = writer.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone && writer.Write(path.c_str()) == IFSelect_RetDone;
+  } else {
+    IGESControl_Controller::Init();
+    IGESControl_Writer writer(unit.c_str(), 1);  // BRep mode: solids stay solids
+    ok = writer.AddShape(shape) && (writer.ComputeModel(), writer.Write(path.c_str()));
+  }
+  if (!ok) throw std::runtime_error("could not write " + path);
+}
+
+SurfaceSample sample_surface(const TopoDS_Shape& shape, std::size_t count, double sigma_mm, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> noise(0.0, sigma_mm > 0.0 ? sigma_mm : 1.0);
+  GProp_GProps total;
+  BRepGProp::SurfaceProperties(shape, total);
+  SurfaceSample out;
+  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(e.Current());
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(face, props);
+    const auto wanted = static_cast<std::size_t>(std::lround(static_cast<double>(count) * props.Mass() / total.Mass()));
+    double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    std::uniform_real_distribution<double> u_of(u0, u1), v_of(v0, v1);
+    const BRepAdaptor_Surface surface(face);
+    BRepClass_FaceClassifier classifier;
+    for (std::size_t got = 0, tries = 0; got < wanted && tries < 100 * wanted; ++tries) {
+      const double u = u_of(random), v = v_of(random);
+      classifier.Perform(face, gp_Pnt2d(u, v), 1e-9);
+      if (classifier.State() != TopAbs_IN) continue;
+      BRepLProp_SLProps props_at(surface, u, v, 1, 1e-9);
+      if (!props_at.IsNormalDefined()) continue;
+      gp_Dir n = props_at.Normal();
+      if (face.Orientation() == TopAbs_REVERSED) n.Reverse();
+      const gp_Pnt p = props_at.Value();
+      const Eigen::Vector3d normal(n.X(), n.Y(), n.Z());
+      const double offset = sigma_mm > 0.0 ? noise(random) : 0.0;
+      out.points.push_back(Eigen::Vector3d(p.X(), p.Y(), p.Z()) + offset * normal);
+      out.normals.push_back(normal);
+      out.offset_mm.push_back(offset);
+      ++got;
+    }
+  }
+  return out;
+}
+
+}  // namespace conform::test

@@ -1,0 +1,38 @@
+#pragma once
+// CAD made in the test with OpenCASCADE itself (issue 22): the shapes, written as STEP or IGES in a chosen unit, and
+// scans sampled on their exact surfaces with a known normal offset (the noise), so that a deviation computed
+// against the tessellated reference can be compared with the offset point by point.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+class TopoDS_Shape;
+
+namespace conform::test {
+
+// A 60 x 40 x 20 mm block at the origin with a 20 x 20 x 10 mm boss on top at (10..30, 10..30) and a through hole
+// of diameter 12 mm along z at (45, 20): 13 faces; inside the hole is outside the part.
+TopoDS_Shape box_with_boss_and_hole();
+// Radius 15 mm, height 40 mm, axis z from the origin.
+TopoDS_Shape cylinder();
+// Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
+TopoDS_Shape torus();
+
+enum class CadFormat { kStep, kIges };
+// unit: "MM" or "M" (the file's coordinates are then in metres).
+void write_cad(const TopoDS_Shape& shape, const std::string& path, CadFormat format, const std::string& unit);
+
+struct SurfaceSample {
+  std::vector<Eigen::Vector3d> points;   // on the exact surface, moved along the outward normal by offset_mm
+  std::vector<Eigen::Vector3d> normals;  // outward unit normals of the exact surface
+  std::vector<double> offset_mm;         // the signed normal offset of each point (outside positive)
+};
+
+// About `count` points over the shape's faces (in proportion to their areas), each offset by a Gaussian of
+// `sigma_mm` along the outward normal, from a generator seeded with `seed`.
+SurfaceSample sample_surface(const TopoDS_Shape& shape, std::size_t count, double sigma_mm, std::uint64_t seed);
+
+}  // namespace conform::test
