@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
 
 
 class Result:
@@ -50,6 +50,18 @@ def _result(job, answer):
     for key in in_memory:  # a temporary file named by the JSON: the input was given in memory
         values[key] = None
     return Result(job, values, dict(arrays))
+
+
+def align(scan, reference, **options):
+    """`conform align`: T_ref_scan of a scan against its reference, convergence, fit figures, the pose's predicted
+    standard deviations, the motions the scan does not constrain and whether to trust the pose (`trust`).
+
+    scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options as the CLI's flags:
+    method ("" automatic, point-to-point, point-to-plane, point-to-surface, plane-to-plane), init (none, pca, fpfh,
+    pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, max_noise_ratio,
+    units, out_transform, out_aligned, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
+    """
+    return _result("align", _conform.align(scan, reference, **options))
 
 
 def compare(scan, reference, **options):
@@ -112,4 +124,4 @@ def generate_tube(out, **options):
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}
+JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}

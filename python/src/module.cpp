@@ -20,6 +20,7 @@
 #include "conform/core/error.h"
 #include "conform/core/io.h"
 #include "conform/core/units.h"
+#include "conform/pipelines/align_json.h"
 #include "conform/pipelines/compare_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
 #include "conform/pipelines/pose_error_json.h"
@@ -84,6 +85,34 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   if (inputs.in_memory(options.reference_path)) in_memory.push_back("reference");
   if (inputs.in_memory(options.transform_path)) in_memory.push_back("transform");
   return answer(j, arrays, in_memory);
+}
+
+py::tuple job_align(const py::object& scan, const py::object& reference, const std::string& method,
+                    const std::string& init, double max_distance, double overlap, int max_iterations,
+                    double free_tolerance_mm, double free_tolerance_deg, double max_noise_ratio,
+                    const std::string& units, const py::object& out_transform, const py::object& out_aligned,
+                    const py::object& progress_callback) {
+  Inputs inputs;
+  AlignOptions options;
+  options.scan_path = inputs.geometry(scan, "scan");
+  options.reference_path = inputs.geometry(reference, "reference");
+  options.mm_per_unit = millimetres_per_unit(units);
+  set_align_method(method, &options);
+  set_align_init(init, &options);
+  options.max_distance_mm = max_distance;
+  options.overlap = overlap;
+  options.max_iterations = max_iterations;
+  options.free_tolerance_mm = free_tolerance_mm;
+  options.free_tolerance_deg = free_tolerance_deg;
+  options.max_noise_ratio = max_noise_ratio;
+  options.out_transform_path = path_of(out_transform);
+  options.out_aligned_path = path_of(out_aligned);
+  const Progress progress(progress_callback);
+  options.progress = progress.function();
+  const AlignResult result = released(progress, [&] { return run_align(options); });
+  py::dict arrays;
+  arrays["warnings"] = py::cast(result.warnings);
+  return answer(align_json(result), arrays);
 }
 
 py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
@@ -197,6 +226,13 @@ PYBIND11_MODULE(_conform, m) {
   m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
         arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
         arg("out_histogram") = py::none(), arg("units") = "mm", arg("progress") = py::none());
+  const AlignOptions align;
+  m.def("align", &job_align, arg("scan"), arg("reference"), py::kw_only(), arg("method") = "", arg("init") = "none",
+        arg("max_distance") = align.max_distance_mm, arg("overlap") = align.overlap,
+        arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
+        arg("free_tolerance_deg") = align.free_tolerance_deg, arg("max_noise_ratio") = align.max_noise_ratio,
+        arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
+        arg("progress") = py::none());
   m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
   const FitCylinderJobOptions cylinder;
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
