@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "JOBS"]
 
 
 class Result:
@@ -113,6 +113,18 @@ def tube_joint(leg, stub, **options):
     return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
 
 
+def sicp(contour, scan, trajectory, **options):
+    """`conform sicp`: a nominal deburring trajectory mapped onto the scanned, deformed part (Subdivision-ICP, one
+    rigid transform or the projection model). contour: path (CSV polyline or a mesh whose boundary is taken); scan:
+    path, (N, 3) array, (vertices, faces) pair or conform.Geometry; trajectory: path (CSV x,y,z,nx,ny,nz). Options as
+    the CLI's flags: surface, segment_length, overlap, curvature_radius, model, projection_fit, neighbourhood,
+    stability, max_distance, coarse_max_distance, scan_voxel, no_joint, joint_weight, joint_damping, max_iterations,
+    min_edge_points, edge_radius, max_edge_gap, outlier_ratio, max_offset, normal_smoothing, normals, truth,
+    out_trajectory, out_rows, progress. Arrays: points_mm, normals (M, 3): the compensated trajectory, empty when it
+    cannot be trusted (`trusted` False, the CLI's exit 1)."""
+    return _result("sicp", _conform.sicp(contour, scan, trajectory, **options))
+
+
 def generate_tube(out, **options):
     """`conform generate tube`: a synthetic tube scan written to `out` (.ply/.stl) with its truth beside it. Options
     as the CLI's flags: radius, length, arc_deg, arc_center_deg, inner, edge or vertices, axis_point, axis_direction,
@@ -124,4 +136,4 @@ def generate_tube(out, **options):
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}
+JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp}

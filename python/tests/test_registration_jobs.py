@@ -58,3 +58,42 @@ def test_align_errors_carry_the_cli_message(tubes):
     with pytest.raises(conform.Error, match="overlap"):
         conform.align(tubes["scan"], tubes["nominal"], overlap=1.5)
 
+
+@pytest.fixture(scope="module")
+def plate(tmp_path_factory):
+    """A small generated plate (sicp's test data): scan, contour, nominal surface, trajectory and its truth."""
+    d = tmp_path_factory.mktemp("plate")
+    cli("generate", "plate", "--out", d / "p.ply", "--scan-points", 8000, "--contour-spacing", 2, "--surface-edge", 4,
+        "--quiet")
+    return {name: d / f"p.{name}" for name in ("ply", "contour.csv", "nominal.ply", "trajectory.csv", "truth.csv")}
+
+
+def test_sicp_matches_cli(plate, tmp_path):
+    common = ["--contour", plate["contour.csv"], "--scan", plate["ply"], "--trajectory", plate["trajectory.csv"],
+              "--surface", plate["nominal.ply"], "--quiet"]
+    expected = cli_json("sicp", *common, "--truth", plate["truth.csv"], "--out-trajectory", tmp_path / "cli.csv")
+    r = conform.sicp(plate["contour.csv"], plate["ply"], plate["trajectory.csv"], surface=plate["nominal.ply"],
+                     truth=plate["truth.csv"], out_trajectory=tmp_path / "py.csv")
+    got = r.to_dict()
+    assert got["out_trajectory"] == expected["out_trajectory"].replace("cli.", "py.")
+    got["out_trajectory"] = expected["out_trajectory"]
+    assert_same(got, expected)
+    assert r.trusted and r.points_mm.shape == (r.trajectory_rows, 3) and r.normals.shape == (r.trajectory_rows, 3)
+    written = np.loadtxt(tmp_path / "py.csv", delimiter=",", skiprows=1)
+    np.testing.assert_allclose(written[:, :3], r.points_mm, atol=1e-6)  # the CSV's printed digits
+    assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+
+    flags = ["--model", "projection", "--projection-fit", "spline", "--normals", "scan", "--segment-length", 30,
+             "--max-iterations", 20, "--min-edge-points", 5]
+    expected = cli_json("sicp", *common, *flags)
+    r = conform.sicp(plate["contour.csv"], conform.read(plate["ply"]), plate["trajectory.csv"],
+                     surface=plate["nominal.ply"], model="projection", projection_fit="spline", normals="scan",
+                     segment_length=30, max_iterations=20, min_edge_points=5)
+    assert_same(r.to_dict(), expected)
+
+
+def test_sicp_errors(plate):
+    with pytest.raises(conform.Error, match="--model"):
+        conform.sicp(plate["contour.csv"], plate["ply"], plate["trajectory.csv"], model="affine")
+    with pytest.raises(TypeError, match="segment_lenght"):
+        conform.sicp(plate["contour.csv"], plate["ply"], plate["trajectory.csv"], segment_lenght=30)
