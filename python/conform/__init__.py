@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "JOBS"]
 
 
 class Result:
@@ -125,6 +125,14 @@ def sicp(contour, scan, trajectory, **options):
     return _result("sicp", _conform.sicp(contour, scan, trajectory, **options))
 
 
+def export(path, **options):
+    """`conform export`: a job's path CSV (tube-joint cut or weld, saddle, sicp trajectory, profile, weld-layers) as a
+    robot or CNC program. Options as the CLI's flags: format (krl, rapid, urscript, fanuc, val3, gcode, csv) and out
+    (required), frame (path or (4, 4) T_base_part), speed_mm_s, approach_speed_mm_s, approach_mm, name, tool,
+    work_object, max_points, three_axis, roll_cone_deg, preferred_x ([x, y, z]). `written` lists the files."""
+    return _result("export", _conform.export(path, **options))
+
+
 def generate_tube(out, **options):
     """`conform generate tube`: a synthetic tube scan written to `out` (.ply/.stl) with its truth beside it. Options
     as the CLI's flags: radius, length, arc_deg, arc_center_deg, inner, edge or vertices, axis_point, axis_direction,
@@ -136,4 +144,4 @@ def generate_tube(out, **options):
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp}
+JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp, "export": export}

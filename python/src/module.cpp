@@ -4,6 +4,7 @@
 // the result's own vectors (moved, not copied), and over the Geometry conform.read returns. The measuring jobs
 // are here, the path-planning ones and the generators in toolpath_jobs.cpp.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -22,6 +23,7 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/align_json.h"
 #include "conform/pipelines/compare_json.h"
+#include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
@@ -113,6 +115,42 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   return answer(align_json(result), arrays);
+}
+
+py::tuple job_export(const py::object& path, const std::string& format, const py::object& out,
+                     const py::object& frame, double speed_mm_s, double approach_speed_mm_s, double approach_mm,
+                     const std::string& name, const std::string& tool, const std::string& work_object,
+                     std::size_t max_points, bool three_axis, double roll_cone_deg,
+                     const std::vector<double>& preferred_x) {
+  static const char* const formats[] = {"krl", "rapid", "urscript", "fanuc", "val3", "gcode", "csv"};
+  if (std::find(std::begin(formats), std::end(formats), format) == std::end(formats)) {
+    throw Error("--format: " + format + " not in {krl, rapid, urscript, fanuc, val3, gcode, csv}");
+  }
+  if (preferred_x.size() != 3) throw Error("--preferred-x: give three numbers x,y,z");
+  Inputs inputs;
+  ExportJobOptions o;
+  o.path_csv = path_of(path);
+  o.format = format;
+  o.out_path = path_of(out);
+  o.frame_path = inputs.transform(frame, "frame");
+  o.frames.roll_cone_rad = roll_cone_deg / 180.0 * 3.141592653589793;
+  o.frames.preferred_x = Eigen::Vector3d(preferred_x[0], preferred_x[1], preferred_x[2]);
+  o.program.speed_mm_s = speed_mm_s;
+  o.program.approach_speed_mm_s = approach_speed_mm_s;
+  o.program.approach_mm = approach_mm;
+  o.program.name = name;
+  o.program.tool = tool;
+  o.program.work_object = work_object;
+  o.program.max_points = max_points;
+  o.program.five_axis = !three_axis;
+  check_export_name(o);
+  const ExportJobResult result = [&] {
+    py::gil_scoped_release release;
+    return run_export(o);
+  }();
+  py::dict arrays;
+  arrays["warnings"] = py::cast(export_warnings(result));
+  return answer(export_json(o, result), arrays);
 }
 
 py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
@@ -233,6 +271,12 @@ PYBIND11_MODULE(_conform, m) {
         arg("free_tolerance_deg") = align.free_tolerance_deg, arg("max_noise_ratio") = align.max_noise_ratio,
         arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
         arg("progress") = py::none());
+  const ProgramOptions program;
+  m.def("export", &job_export, arg("path"), py::kw_only(), arg("format"), arg("out"), arg("frame") = py::none(),
+        arg("speed_mm_s") = program.speed_mm_s, arg("approach_speed_mm_s") = program.approach_speed_mm_s,
+        arg("approach_mm") = program.approach_mm, arg("name") = "", arg("tool") = program.tool,
+        arg("work_object") = program.work_object, arg("max_points") = program.max_points, arg("three_axis") = false,
+        arg("roll_cone_deg") = 0.0, arg("preferred_x") = std::vector<double>{1.0, 0.0, 0.0});
   m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
   const FitCylinderJobOptions cylinder;
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
