@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "JOBS"]
 
 
 class Result:
@@ -141,6 +141,15 @@ def generate_tube(out, **options):
     [az_deg, z_mm, radius_mm]), holes, hole_radius, outliers, outlier_distance, seed, ascii, double, normals,
     progress. Read the scan back with conform.read(out)."""
     return _result("generate_tube", _conform.generate_tube(out, **options))
+
+
+def generate_eroded(out, **options):
+    """`conform generate eroded`: a synthetic eroded blade grid written to `out` (.csv), with the reference grid and
+    the true crater rims beside it. Options as the CLI's flags: rows, cols, length, width, chord_radius, span_radius,
+    twist, crater (a list of [x_mm, y_mm, radius_mm, depth_mm (, inner_radius_mm (, lip_mm, lip_width_mm))]; None:
+    the CLI's one default crater), bump (a list of [x_mm, y_mm, radius_mm, height_mm]), reference_offset,
+    reference_tilt_deg, noise, seed."""
+    return _result("generate_eroded", _conform.generate_eroded(out, **options))
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.

@@ -25,6 +25,7 @@
 #include "conform/pipelines/compare_json.h"
 #include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/generate_eroded_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
 #include "inputs.h"
@@ -153,6 +154,37 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
   return answer(export_json(o, result), arrays);
 }
 
+py::tuple job_generate_eroded(const py::object& out, int rows, int cols, double length, double width,
+                              double chord_radius, double span_radius, double twist,
+                              const std::optional<std::vector<std::vector<double>>>& craters,
+                              const std::vector<std::vector<double>>& bumps, double reference_offset,
+                              double reference_tilt_deg, double noise, std::uint64_t seed) {
+  GenerateErodedOptions options;
+  ErodedOptions& o = options.eroded;
+  o.rows = rows;
+  o.cols = cols;
+  o.length_mm = length;
+  o.width_mm = width;
+  o.chord_radius_mm = chord_radius;
+  o.span_radius_mm = span_radius;
+  o.twist_per_mm = twist;
+  if (craters) {
+    o.craters.clear();
+    for (const std::vector<double>& c : *craters) o.craters.push_back(eroded_crater(c));
+  }
+  for (const std::vector<double>& b : bumps) o.bumps.push_back(eroded_bump(b));
+  o.reference_offset_mm = reference_offset;
+  o.reference_tilt_deg = reference_tilt_deg;
+  o.noise_mm = noise;
+  o.seed = seed;
+  options.out_path = path_of(out);
+  const GenerateErodedResult result = [&] {
+    py::gil_scoped_release release;
+    return run_generate_eroded(options);
+  }();
+  return answer(generate_eroded_json(options, result), py::dict());
+}
+
 py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
   Inputs inputs;
   PoseErrorOptions options;
@@ -277,6 +309,14 @@ PYBIND11_MODULE(_conform, m) {
         arg("approach_mm") = program.approach_mm, arg("name") = "", arg("tool") = program.tool,
         arg("work_object") = program.work_object, arg("max_points") = program.max_points, arg("three_axis") = false,
         arg("roll_cone_deg") = 0.0, arg("preferred_x") = std::vector<double>{1.0, 0.0, 0.0});
+  const ErodedOptions eroded;
+  m.def("generate_eroded", &job_generate_eroded, arg("out"), py::kw_only(), arg("rows") = eroded.rows,
+        arg("cols") = eroded.cols, arg("length") = eroded.length_mm, arg("width") = eroded.width_mm,
+        arg("chord_radius") = eroded.chord_radius_mm, arg("span_radius") = eroded.span_radius_mm,
+        arg("twist") = eroded.twist_per_mm, arg("crater") = py::none(),
+        arg("bump") = std::vector<std::vector<double>>{}, arg("reference_offset") = eroded.reference_offset_mm,
+        arg("reference_tilt_deg") = eroded.reference_tilt_deg, arg("noise") = eroded.noise_mm,
+        arg("seed") = eroded.seed);
   m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
   const FitCylinderJobOptions cylinder;
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
