@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "JOBS"]
 
 
 class Result:
@@ -150,6 +150,14 @@ def generate_eroded(out, **options):
     the CLI's one default crater), bump (a list of [x_mm, y_mm, radius_mm, height_mm]), reference_offset,
     reference_tilt_deg, noise, seed."""
     return _result("generate_eroded", _conform.generate_eroded(out, **options))
+
+
+def generate_profile(out, **options):
+    """`conform generate profile`: a deformed ship profile's measured edge written to `out` (.csv), with the
+    designed features and the ground truth beside it. Options as the CLI's flags: length, width, bow, bow_asymmetry,
+    bow_out, twist_deg, kink_deg, kink_at, kink_length, spacing, noise, dropouts, second_edge, holes, hole_radius,
+    hole_tx, marking_line, outliers, outlier_mm, offset ([x, y, z]), reverse, seed."""
+    return _result("generate_profile", _conform.generate_profile(out, **options))
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.

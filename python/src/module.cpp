@@ -26,6 +26,7 @@
 #include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
 #include "conform/pipelines/generate_eroded_json.h"
+#include "conform/pipelines/generate_profile_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
 #include "inputs.h"
@@ -185,6 +186,46 @@ py::tuple job_generate_eroded(const py::object& out, int rows, int cols, double 
   return answer(generate_eroded_json(options, result), py::dict());
 }
 
+py::tuple job_generate_profile(const py::object& out, double length, double width, double bow, double bow_asymmetry,
+                               double bow_out, double twist_deg, double kink_deg, double kink_at, double kink_length,
+                               double spacing, double noise, double dropouts, bool second_edge, int holes,
+                               double hole_radius, double hole_tx, bool marking_line, int outliers,
+                               double outlier_mm, const std::vector<double>& offset, bool reverse,
+                               std::uint64_t seed) {
+  if (offset.size() != 3) throw Error("--offset: give three numbers x,y,z");
+  GenerateProfileRequest r;
+  ProfileDeformationOptions& d = r.scan.deformation;
+  d.length_mm = length;
+  d.width_mm = width;
+  d.bow_in_plane_mm = bow;
+  d.bow_asymmetry = bow_asymmetry;
+  d.bow_out_of_plane_mm = bow_out;
+  d.kink_at_mm = kink_at;
+  d.kink_length_mm = kink_length;
+  r.twist_deg = twist_deg;
+  r.kink_deg = kink_deg;
+  r.scan.spacing_mm = spacing;
+  r.scan.noise_mm = noise;
+  r.scan.dropout_fraction = dropouts;
+  r.scan.second_edge = second_edge;
+  r.scan.holes = holes;
+  r.scan.hole_radius_mm = hole_radius;
+  r.scan.hole_tx_mm = hole_tx;
+  r.scan.marking_line = marking_line;
+  r.scan.outliers = outliers;
+  r.scan.outlier_mm = outlier_mm;
+  r.offset_mm = Eigen::Vector3d(offset[0], offset[1], offset[2]);
+  r.scan.reversed = reverse;
+  r.scan.seed = seed;
+  r.out_path = path_of(out);
+  const GenerateProfileOptions options = generate_profile_options(r);
+  const GenerateProfileResult result = [&] {
+    py::gil_scoped_release release;
+    return run_generate_profile(options);
+  }();
+  return answer(generate_profile_json(result), py::dict());
+}
+
 py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
   Inputs inputs;
   PoseErrorOptions options;
@@ -317,6 +358,18 @@ PYBIND11_MODULE(_conform, m) {
         arg("bump") = std::vector<std::vector<double>>{}, arg("reference_offset") = eroded.reference_offset_mm,
         arg("reference_tilt_deg") = eroded.reference_tilt_deg, arg("noise") = eroded.noise_mm,
         arg("seed") = eroded.seed);
+  const ProfileScanOptions profile;
+  const ProfileDeformationOptions& bend = profile.deformation;
+  m.def("generate_profile", &job_generate_profile, arg("out"), py::kw_only(), arg("length") = bend.length_mm,
+        arg("width") = bend.width_mm, arg("bow") = bend.bow_in_plane_mm, arg("bow_asymmetry") = bend.bow_asymmetry,
+        arg("bow_out") = bend.bow_out_of_plane_mm, arg("twist_deg") = 0.0, arg("kink_deg") = 0.0,
+        arg("kink_at") = bend.kink_at_mm, arg("kink_length") = bend.kink_length_mm,
+        arg("spacing") = profile.spacing_mm, arg("noise") = profile.noise_mm,
+        arg("dropouts") = profile.dropout_fraction, arg("second_edge") = profile.second_edge,
+        arg("holes") = profile.holes, arg("hole_radius") = profile.hole_radius_mm, arg("hole_tx") = profile.hole_tx_mm,
+        arg("marking_line") = profile.marking_line, arg("outliers") = profile.outliers,
+        arg("outlier_mm") = profile.outlier_mm, arg("offset") = std::vector<double>{0.0, 0.0, 0.0},
+        arg("reverse") = profile.reversed, arg("seed") = profile.seed);
   m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
   const FitCylinderJobOptions cylinder;
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,

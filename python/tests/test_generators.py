@@ -25,3 +25,27 @@ def test_generate_eroded_matches_cli(tmp_path):
         assert_same(got, expected)
     with pytest.raises(conform.Error, match="--crater"):
         conform.generate_eroded(tmp_path / "bad.csv", crater=[[1, 2, 3]])
+
+
+def test_generate_profile_matches_cli(tmp_path):
+    for flags, kwargs in [([], {}),
+                          (["--kink-deg", 0.5, "--twist-deg", 1.5, "--bow-asymmetry", 0.3, "--second-edge",
+                            "--marking-line", "--outliers", 3, "--dropouts", 0.05, "--offset", "100,-50,10",
+                            "--reverse", "--seed", 8, "--holes", 3, "--length", 3000, "--kink-at", 1000, "--spacing", 10],
+                           {"kink_deg": 0.5, "twist_deg": 1.5, "bow_asymmetry": 0.3, "second_edge": True,
+                            "marking_line": True, "outliers": 3, "dropouts": 0.05, "offset": [100, -50, 10],
+                            "reverse": True, "seed": 8, "holes": 3, "length": 3000, "kink_at": 1000, "spacing": 10})]:
+        if "--length" not in flags:
+            flags, kwargs = flags + ["--length", 2000], dict(kwargs, length=2000)
+        expected = cli_json("generate", "profile", "--out", tmp_path / "cli.csv", *flags)
+        got = conform.generate_profile(tmp_path / "py.csv", **kwargs).to_dict()
+        for key in [k for k in expected if k.endswith("_path") and expected[k] is not None]:
+            assert got[key] == expected[key].replace("cli.", "py.")
+            if key != "truth_json_path":  # the truth JSON names its own files
+                assert open(got[key], "rb").read() == open(expected[key], "rb").read(), key
+        for key in [k for k in expected if isinstance(expected[k], str) and "cli." in expected[k]]:
+            assert got[key] == expected[key].replace("cli.", "py."), key  # the files it names, as the CLI's
+            got[key] = expected[key]
+        assert_same(got, expected)
+    with pytest.raises(conform.Error, match="kink_at_mm"):
+        conform.generate_profile(tmp_path / "bad.csv", length=3000, kink_deg=1)
