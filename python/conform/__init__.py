@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "JOBS"]
 
 
 class Result:
@@ -158,6 +158,29 @@ def generate_profile(out, **options):
     bow_out, twist_deg, kink_deg, kink_at, kink_length, spacing, noise, dropouts, second_edge, holes, hole_radius,
     hole_tx, marking_line, outliers, outlier_mm, offset ([x, y, z]), reverse, seed."""
     return _result("generate_profile", _conform.generate_profile(out, **options))
+
+
+_PANEL = """Common options as the CLI's flags: band, thickness, surface_edge, contour_spacing, trajectory_spacing,
+    scan_points (0: the shape's default), noise, missing, missing_patches, missing_depth, holes, hole_radius, field,
+    field_wavelength, seed, progress."""
+
+
+def generate_plate(out, **options):
+    """`conform generate plate`: a deformed double-curvature plate with a porthole, its scan written to `out` (.ply)
+    and beside it the nominal surface, contour, trajectory and the true (deformed) trajectory, sicp's inputs. Plate
+    options: radius_x, radius_y, porthole_width, porthole_height, round, clamp_span, sag, bend, twist, opening
+    (ellipse or rectangle), corner_radius. """
+    return _result("generate_plate", _conform.generate_plate(out, **options))
+
+
+def generate_nosecone(out, **options):
+    """`conform generate nosecone`: as generate_plate, a barrel section with a cockpit-like opening. Its options:
+    radius, window_height, window_bottom, window_top, corner_radius, ovality, droop. """
+    return _result("generate_nosecone", _conform.generate_nosecone(out, **options))
+
+
+generate_plate.__doc__ += _PANEL
+generate_nosecone.__doc__ += _PANEL
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.

@@ -381,4 +381,5 @@ PYBIND11_MODULE(_conform, m) {
         arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,
         arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none());
   bind_toolpath_jobs(m);
+  bind_generator_jobs(m);
 }

@@ -229,16 +229,6 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
-// Keyword arguments the job knows, or TypeError naming the first one it does not (as Python does).
-void check_keywords(const char* job, const py::kwargs& kw, std::initializer_list<const char*> known) {
-  for (const auto& item : kw) {
-    const std::string name = py::str(item.first);
-    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
-      throw py::type_error(std::string(job) + "() got an unexpected keyword argument '" + name + "'");
-    }
-  }
-}
-
 Eigen::Vector3d vector_of(const py::handle& value) {
   const std::array<double, 3> v = value.cast<std::array<double, 3>>();
   return {v[0], v[1], v[2]};

@@ -1,5 +1,7 @@
 """conform.generate_* against `conform generate ... --json` with the same flags: the same JSON, the same file bytes."""
 
+import json
+
 import pytest
 
 import conform
@@ -49,3 +51,27 @@ def test_generate_profile_matches_cli(tmp_path):
         assert_same(got, expected)
     with pytest.raises(conform.Error, match="kink_at_mm"):
         conform.generate_profile(tmp_path / "bad.csv", length=3000, kink_deg=1)
+
+
+def test_generate_plate_and_nosecone_match_cli(tmp_path):
+    small = ["--scan-points", 4000, "--contour-spacing", 2, "--surface-edge", 4, "--quiet"]
+    cases = [("plate", ["--opening", "rectangle", "--corner-radius", 10, "--missing", 0.1, "--holes", 2, "--field",
+                        0.5, "--seed", 3, "--sag", 2],
+              {"opening": "rectangle", "corner_radius": 10, "missing": 0.1, "holes": 2, "field": 0.5, "seed": 3,
+               "sag": 2}),
+             ("nosecone", ["--ovality", 2, "--droop", 3, "--noise", 0.03], {"ovality": 2, "droop": 3,
+                                                                          "noise": 0.03})]
+    for shape, flags, kwargs in cases:
+        expected = cli_json("generate", shape, "--out", tmp_path / f"cli_{shape}.ply", *small, *flags)
+        kwargs = dict({"scan_points": 4000, "contour_spacing": 2, "surface_edge": 4}, **kwargs)
+        got = getattr(conform, f"generate_{shape}")(tmp_path / f"py_{shape}.ply", **kwargs).to_dict()
+        for key in ("scan", "nominal", "contour", "trajectory", "truth_trajectory", "truth_file"):
+            assert got[key] == expected[key].replace("/cli_", "/py_")
+            if key != "truth_file":  # the truth JSON names its own files
+                assert open(got[key], "rb").read() == open(expected[key], "rb").read(), key
+        # The file names (also in the truth's own list) are the only difference.
+        assert_same(json.loads(json.dumps(got).replace("py_", "cli_")), expected)
+    with pytest.raises(TypeError, match="sag"):
+        conform.generate_nosecone(tmp_path / "x.ply", sag=2)
+    with pytest.raises(conform.Error, match="--opening"):
+        conform.generate_plate(tmp_path / "x.ply", opening="circle")
