@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "generate_tube_joint", "JOBS"]
 
 
 class Result:
@@ -181,6 +181,15 @@ def generate_nosecone(out, **options):
 
 generate_plate.__doc__ += _PANEL
 generate_nosecone.__doc__ += _PANEL
+
+
+def generate_tube_joint(out_leg, out_stub, out_truth, **options):
+    """`conform generate tube-joint`: a posed leg + stub scan pair (meshes) and the true intersection curve (CSV),
+    tube_joint's input. Options as the CLI's flags: pitch_deg, offset, protrusion (0: automatic), leg_radius,
+    stub_radius, wall, edge, leg_vertices, stub_vertices, ovality_pct, peaking, leg_seam_deg, stub_seam_deg,
+    seam_width, leg_bump and stub_bump (lists of [az_deg, z_mm, height_mm, radius_mm]), noise, leg_arc_deg,
+    stub_length, truth_points, seed, ascii."""
+    return _result("generate_tube_joint", _conform.generate_tube_joint(out_leg, out_stub, out_truth, **options))
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.

@@ -1,13 +1,18 @@
-// conform._conform's panel generators: generate_plate and generate_nosecone (`conform generate plate|nosecone`).
-// Keyword arguments are the CLI's flags; unset ones keep PanelOptions' defaults.
+// conform._conform's generators of sicp's and tube-joint's test data: generate_plate, generate_nosecone (`conform
+// generate plate|nosecone`) and generate_tube_joint.
+// Keyword arguments are the CLI's flags; unset ones keep the Options' or Request's defaults.
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include <pybind11/stl.h>
+
 #include "bindings.h"
 #include "conform/pipelines/generate_panel_json.h"
+#include "conform/pipelines/generate_tube_joint_json.h"
 
 namespace conform::python {
 namespace {
@@ -86,6 +91,50 @@ py::tuple job_generate_panel(PanelShape shape, const py::object& out, const py::
   return answer(generate_panel_json(result), py::dict());
 }
 
+py::tuple job_generate_tube_joint(const py::object& out_leg, const py::object& out_stub, const py::object& out_truth,
+                                  const py::kwargs& kw) {
+  check_keywords("generate_tube_joint", kw,
+                 {"pitch_deg", "offset", "protrusion", "leg_radius", "stub_radius", "wall", "edge", "leg_vertices",
+                  "stub_vertices", "ovality_pct", "peaking", "leg_seam_deg", "stub_seam_deg", "seam_width", "leg_bump",
+                  "stub_bump", "noise", "leg_arc_deg", "stub_length", "truth_points", "seed", "ascii"});
+  const auto set = [&kw](const char* name, auto& field) {
+    if (kw.contains(name) && !kw[name].is_none()) field = kw[name].cast<std::remove_reference_t<decltype(field)>>();
+  };
+  GenerateTubeJointRequest r;
+  GenerateTubeJointOptions& job = r.job;
+  job.leg_path = path_of(out_leg);
+  job.stub_path = path_of(out_stub);
+  job.truth_path = path_of(out_truth);
+  set("pitch_deg", r.pitch_deg);
+  set("offset", job.spec.offset_mm);
+  set("protrusion", job.spec.protrusion_mm);
+  set("leg_radius", job.joint.leg.radius_mm);
+  set("stub_radius", job.stub_outer_radius_mm);
+  set("wall", job.wall_mm);
+  set("edge", r.edge_mm);
+  set("leg_vertices", job.joint.leg.vertex_count);
+  set("stub_vertices", job.joint.stub.vertex_count);
+  set("ovality_pct", r.ovality_pct);
+  set("peaking", r.peaking_mm);
+  set("leg_seam_deg", r.leg_seam_deg);
+  set("stub_seam_deg", r.stub_seam_deg);
+  set("seam_width", r.seam_width_mm);
+  set("leg_bump", r.leg_bumps);
+  set("stub_bump", r.stub_bumps);
+  set("noise", r.noise_mm);
+  set("leg_arc_deg", r.leg_arc_deg);
+  set("stub_length", job.joint.stub_length_mm);
+  set("truth_points", job.joint.truth_points);
+  set("seed", r.seed);
+  set("ascii", r.ascii);
+  const GenerateTubeJointOptions options = generate_tube_joint_options(r);
+  const GenerateTubeJointResult result = [&] {
+    py::gil_scoped_release release;
+    return run_generate_tube_joint(options);
+  }();
+  return answer(generate_tube_joint_json(options, result), py::dict());
+}
+
 }  // namespace
 
 void bind_generator_jobs(py::module_& m) {
@@ -97,6 +146,8 @@ void bind_generator_jobs(py::module_& m) {
       "generate_nosecone",
       [](const py::object& out, const py::kwargs& kw) { return job_generate_panel(PanelShape::kNoseCone, out, kw); },
       py::arg("out"));
+  // Keyword arguments as the flags of `conform generate tube-joint` (GenerateTubeJointRequest holds their defaults).
+  m.def("generate_tube_joint", &job_generate_tube_joint, py::arg("out_leg"), py::arg("out_stub"), py::arg("out_truth"));
 }
 
 }  // namespace conform::python

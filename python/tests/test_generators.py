@@ -75,3 +75,22 @@ def test_generate_plate_and_nosecone_match_cli(tmp_path):
         conform.generate_nosecone(tmp_path / "x.ply", sag=2)
     with pytest.raises(conform.Error, match="--opening"):
         conform.generate_plate(tmp_path / "x.ply", opening="circle")
+
+
+def test_generate_tube_joint_matches_cli(tmp_path):
+    flags = ["--pitch-deg", 45, "--offset", 100, "--ovality-pct", 1, "--peaking", 3, "--noise", 0.2, "--edge", 20,
+             "--leg-bump", "10,50,2,40", "--stub-bump", "200,-30,1,30", "--leg-arc-deg", 120, "--seed", 4, "--ascii"]
+    names = {who: [tmp_path / f"{who}_{part}" for part in ("leg.ply", "stub.ply", "truth.csv")] for who in ("cli", "py")}
+    expected = cli_json("generate", "tube-joint", "--out-leg", names["cli"][0], "--out-stub", names["cli"][1],
+                        "--out-truth", names["cli"][2], *flags)
+    r = conform.generate_tube_joint(*names["py"], pitch_deg=45, offset=100, ovality_pct=1, peaking=3, noise=0.2,
+                                    edge=20, leg_bump=[[10, 50, 2, 40]], stub_bump=[[200, -30, 1, 30]],
+                                    leg_arc_deg=120, seed=4, ascii=True)
+    got = r.to_dict()
+    for key, mine, theirs in zip(("leg", "stub", "truth"), names["py"], names["cli"]):
+        assert got[key] == str(mine) and expected[key] == str(theirs)
+        assert mine.read_bytes() == theirs.read_bytes(), key
+        got[key] = expected[key]
+    assert_same(got, expected)
+    with pytest.raises(TypeError, match="pitch"):
+        conform.generate_tube_joint(*names["py"], pitch=45)
