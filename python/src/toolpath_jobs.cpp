@@ -1,5 +1,5 @@
-// conform._conform's path-planning jobs and generators: profile, tube_joint, weld_layers, sicp, generate_tube (module.cpp
-// has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request structs.
+// conform._conform's path-planning jobs and a generator: profile, tube_joint, weld_layers, sicp, generate_tube
+// (module.cpp has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request structs.
 
 #include <algorithm>
 #include <array>
