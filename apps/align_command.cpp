@@ -11,7 +11,7 @@
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/align.h"
-#include "json_values.h"
+#include "conform/pipelines/align_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -29,55 +29,6 @@ std::string vector_text(const Eigen::Vector3d& v, int decimals) {
 std::string describe(const DegenerateDirection& d) {
   if (d.kind == MotionKind::kTranslation) return "translation along " + vector_text(d.direction, 4);
   return "rotation about " + vector_text(d.direction, 4) + " through " + vector_text(d.point, 3) + " mm";
-}
-
-nlohmann::json degenerate_json(const DegeneracyReport& report) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const DegenerateDirection& d : report.directions) {
-    nlohmann::json entry = {{"kind", d.kind == MotionKind::kTranslation ? "translation" : "rotation"},
-                            {"direction", to_json(d.direction)},
-                            {"relative_eigenvalue", d.relative_eigenvalue},
-                            {"std_mm", d.std_mm},
-                            {"std_deg", d.std_rad * kDeg}};
-    if (d.kind == MotionKind::kRotation) {
-      entry["point_mm"] = to_json(d.point);
-      entry["pitch_mm_per_rad"] = d.pitch_mm_per_rad;
-    }
-    list.push_back(entry);
-  }
-  return list;
-}
-
-// Every eigen-direction of the constraint: the motion per unit, how well it is fixed, whether it was held.
-nlohmann::json constraint_json(const DegeneracyReport& report) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const ConstraintDirection& d : report.eigen_directions) {
-    list.push_back({{"rotation_rad", to_json(d.rotation)},
-                    {"translation_mm", to_json(d.translation)},
-                    {"relative_eigenvalue", d.relative_eigenvalue},
-                    {"std_deg", d.std_rad * kDeg},
-                    {"std_mm", d.std_mm},
-                    {"held", d.held}});
-  }
-  return list;
-}
-
-nlohmann::json pose_std_json(const DegeneracyReport& report) {
-  const Vector6d& s = report.std;
-  return {{"rx_deg", s(0) * kDeg}, {"ry_deg", s(1) * kDeg}, {"rz_deg", s(2) * kDeg},
-          {"tx_mm", s(3)},         {"ty_mm", s(4)},         {"tz_mm", s(5)}};
-}
-
-nlohmann::json verdict_json(const AlignVerdict& v) {
-  return {{"trust", to_string(v.trust)},
-          {"reasons", v.reasons},
-          {"summary", v.summary},
-          {"scan_noise_mm", v.scan_noise_mm},
-          {"reference_noise_mm", v.reference_noise_mm},
-          {"expected_noise_mm", v.expected_noise_mm},
-          {"fit_noise_mm", v.fit_noise_mm},
-          {"noise_ratio", v.noise_ratio},
-          {"overlap", v.overlap}};
 }
 
 // Why ICP stopped, in words a user can act on.
@@ -160,19 +111,14 @@ class AlignCommand : public Command {
 
   int run() override {
     options_.mm_per_unit = millimetres_per_unit(units_);
-    if (!method_.empty()) {
-      options_.method = method_ == "point-to-point"     ? IcpMethod::kPointToPoint
-                        : method_ == "point-to-plane"   ? IcpMethod::kPointToPlane
-                        : method_ == "point-to-surface" ? IcpMethod::kPointToSurface
-                                                        : IcpMethod::kPlaneToPlane;
-    }
-    parse_init();
+    set_align_method(method_, &options_);
+    set_align_init(init_, &options_);
     options_.progress = stderr_progress(false);
     options_.cad.progress = options_.progress;
     const AlignResult result = run_align(options_);
     warn_all(result.warnings);
     if (json_) {
-      nlohmann::json j = summary(result);
+      nlohmann::json j = align_json(result);
       j["cad"] = cad_json(result.cad_inputs);
       print_json(j);
     } else {
@@ -192,89 +138,10 @@ class AlignCommand : public Command {
   }
 
  private:
-  void parse_init() {
-    if (init_ == "none") {
-      options_.init = AlignInit::kNone;
-    } else if (init_ == "pca") {
-      options_.init = AlignInit::kPca;
-    } else if (init_ == "fpfh") {
-      options_.init = AlignInit::kFpfh;
-    } else if (init_.rfind("pairs:", 0) == 0 && init_.size() > 6) {
-      options_.init = AlignInit::kPairs;
-      options_.pairs_path = init_.substr(6);
-    } else {
-      throw Error("--init " + init_ + ": use none, pca, fpfh or pairs:FILE");
-    }
-  }
-
   static std::string degenerate_list(const DegeneracyReport& report) {
     std::string out;
     for (const DegenerateDirection& d : report.directions) out += (out.empty() ? "" : "; ") + describe(d);
     return out;
-  }
-
-  static nlohmann::json summary(const AlignResult& r) {
-    const IcpResult& icp = r.icp;
-    nlohmann::json starts = nlohmann::json::array();
-    for (const StartReport& s : r.coarse.ranking.starts) {
-      nlohmann::json pose = nlohmann::json::array();
-      for (int row = 0; row < 4; ++row) {
-        pose.push_back(std::vector<double>{s.T_probe(row, 0), s.T_probe(row, 1), s.T_probe(row, 2), s.T_probe(row, 3)});
-      }
-      starts.push_back({{"label", s.label},
-                        {"score_mm", s.score_mm},
-                        {"inlier_fraction", s.inlier_fraction},
-                        {"inlier_share", s.inlier_share},
-                        {"rms_mm", s.rms_mm},
-                        {"best_only_share", s.best_only_share},
-                        {"only_share", s.only_share},
-                        {"separated", s.separated},
-                        {"T_ref_scan", pose}});
-    }
-    const DegeneracyReport& c = icp.degeneracy;
-    nlohmann::json covariance = nlohmann::json::array();
-    for (int row = 0; row < 6; ++row) {
-      covariance.push_back(std::vector<double>{c.covariance(row, 0), c.covariance(row, 1), c.covariance(row, 2),
-                                               c.covariance(row, 3), c.covariance(row, 4), c.covariance(row, 5)});
-    }
-    nlohmann::json j = {{"T_ref_scan", to_json(icp.T_ref_scan)},
-                        {"converged", icp.converged && r.verdict.trust != AlignTrust::kNo},
-                        {"icp_converged", icp.converged},
-                        {"trust", to_string(r.verdict.trust)},
-                        {"verdict", verdict_json(r.verdict)},
-                        {"noise_mm", c.noise_mm},
-                        {"pose_std", pose_std_json(c)},
-                        {"pose_covariance", covariance},
-                        {"covariance_centre_mm", to_json(c.centre)},
-                        {"constraint_directions", constraint_json(c)},
-                        {"free_tolerance_mm", c.tolerance_mm},
-                        {"free_tolerance_deg", c.tolerance_rad * kDeg},
-                        {"iterations", icp.iterations},
-                        {"termination", to_string(icp.termination)},
-                        {"rms_mm", icp.rms_mm},
-                        {"inlier_fraction", icp.inlier_fraction},
-                        {"degenerate_directions", degenerate_json(icp.degeneracy)},
-                        {"degeneracy_eigenvalues",
-                         std::vector<double>(icp.degeneracy.eigenvalues.data(),
-                                             icp.degeneracy.eigenvalues.data() + icp.degeneracy.eigenvalues.size())},
-                        {"method", to_string(r.method)},
-                        {"init", to_string(r.init)},
-                        {"start", r.start},
-                        {"starts", starts},
-                        {"ambiguous", r.coarse.ranking.ambiguous},
-                        {"coarse_inlier_distance_mm", r.coarse.inlier_distance_mm},
-                        {"max_distance_mm", r.max_distance_mm},
-                        {"scan_points", r.scan_points},
-                        {"scan_points_used", r.scan_points_used},
-                        {"reference_points", r.reference_points},
-                        {"reference_faces", r.reference_faces},
-                        {"transform_file", r.transform_path},
-                        {"aligned_file", r.aligned_path}};
-    if (r.init == AlignInit::kPairs) {
-      j["pair_residuals_mm"] = r.pairs.residuals_mm;
-      j["pair_rms_mm"] = r.pairs.rms_mm;
-    }
-    return j;
   }
 
   static void print_text(const AlignResult& r) {

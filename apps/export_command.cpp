@@ -10,7 +10,7 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/export.h"
-#include "json_values.h"
+#include "conform/pipelines/export_json.h"
 #include "number_list.h"
 #include "terminal.h"
 
@@ -18,8 +18,6 @@ namespace conform::app {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
-// A larger turn between two consecutive frames is a wrist flip or a corner turned on the spot: warned about.
-constexpr double kLargeStepDeg = 30.0;
 
 class ExportCommand : public Command {
  public:
@@ -76,14 +74,9 @@ class ExportCommand : public Command {
     o.program = options_;
     o.program.name = name_;
     o.program.five_axis = !three_axis_;
-    std::string why;
-    ProgramOptions named = o.program;
-    named.name = name_.empty() ? std::filesystem::path(out_).stem().string() : name_;
-    if (!named.IsValid(&why) && name_.empty()) {
-      throw Error("export: " + why + " (the name is --out's stem; give --name)");
-    }
+    check_export_name(o);
     const ExportJobResult result = run_export(o);
-    report(result);
+    report(o, result);
     return 0;
   }
 
@@ -93,30 +86,11 @@ class ExportCommand : public Command {
     return {v[0], v[1], v[2]};
   }
 
-  void report(const ExportJobResult& r) const {
+  void report(const ExportJobOptions& o, const ExportJobResult& r) const {
     const ToolFrameFigures& f = r.figures;
     const double max_step_deg = f.max_orientation_step_rad / kPi * 180.0;
-    std::vector<std::string> warnings;
-    if (max_step_deg > kLargeStepDeg) {
-      warnings.push_back("the tool turns by " + std::to_string(max_step_deg) +
-                         " deg between two consecutive frames (frame " + std::to_string(f.max_step_index) +
-                         "): check for a wrist flip (--roll-cone-deg)");
-    }
     if (json_) {
-      print_json({{"job", r.job},
-                  {"format", format_},
-                  {"segments", r.segments},
-                  {"frames", r.frames},
-                  {"targets", r.targets},
-                  {"parts", r.parts},
-                  {"max_orientation_step_deg", max_step_deg},
-                  {"max_orientation_step_frame", f.max_step_index},
-                  {"parallel_tangents", f.parallel_tangents},
-                  {"repeated_points", f.repeated_points},
-                  {"roll_limited", f.roll_limited},
-                  {"T_base_part", to_json(r.T_base_part)},
-                  {"warnings", warnings},
-                  {"written", r.written}});
+      print_json(export_json(o, r));
     } else {
       std::printf("path          %s file, %zu segments, %zu frames\n", r.job.c_str(), r.segments, r.frames);
       std::printf("program       %s, %zu motion points (approach %g mm), %zu part%s\n", format_.c_str(), r.targets,
@@ -127,7 +101,7 @@ class ExportCommand : public Command {
                   f.parallel_tangents, f.repeated_points, f.roll_limited);
       for (const std::string& w : r.written) std::printf("wrote         %s\n", w.c_str());
     }
-    for (const std::string& w : warnings) warn("export: " + w);
+    for (const std::string& w : export_warnings(r)) warn("export: " + w);
   }
 
   std::string path_;

@@ -9,7 +9,7 @@
 #include "command.h"
 #include "number_list.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/generate_eroded.h"
+#include "conform/pipelines/generate_eroded_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -19,16 +19,11 @@ namespace {
 Crater parse_crater(const std::string& text) {
   const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
   const std::string shape = "X_MM,Y_MM,RADIUS_MM,DEPTH_MM[,INNER_RADIUS_MM[,LIP_MM,LIP_WIDTH_MM]]";
-  const std::vector<double> v = parse_numbers(text, n == 5 || n == 7 ? n : 4, "--crater", shape);
-  Crater c{v[0], v[1], v[2], v[3]};
-  if (v.size() >= 5) c.inner_radius_mm = v[4];
-  if (v.size() == 7) c.lip_mm = v[5], c.lip_width_mm = v[6];
-  return c;
+  return eroded_crater(parse_numbers(text, n == 5 || n == 7 ? n : 4, "--crater", shape));
 }
 
 Bump parse_bump(const std::string& text) {
-  const std::vector<double> v = parse_numbers(text, 4, "--bump", "X_MM,Y_MM,RADIUS_MM,HEIGHT_MM");
-  return {v[0], v[1], v[2], v[3]};
+  return eroded_bump(parse_numbers(text, 4, "--bump", "X_MM,Y_MM,RADIUS_MM,HEIGHT_MM"));
 }
 
 class GenerateErodedCommand : public Command {
@@ -67,9 +62,7 @@ class GenerateErodedCommand : public Command {
     options.out_path = out_;
     const GenerateErodedResult r = run_generate_eroded(options);
     if (json_) {
-      print_json({{"eroded", r.eroded_path}, {"reference", r.reference_path}, {"rims", r.rims_path},
-                  {"rows", r.rows}, {"cols", r.cols}, {"craters", r.craters}, {"max_depth_mm", r.max_depth_mm},
-                  {"noise_mm", options.eroded.noise_mm}, {"seed", seed_}});
+      print_json(generate_eroded_json(options, r));
     } else {
       std::printf("grid        %d x %d points, %g x %g mm\n", r.rows, r.cols, o_.length_mm, o_.width_mm);
       std::printf("craters     %zu, deepest %g mm, noise %g mm\n", r.craters, r.max_depth_mm, options.eroded.noise_mm);

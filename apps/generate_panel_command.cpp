@@ -7,7 +7,7 @@
 #include <string>
 
 #include "command.h"
-#include "conform/pipelines/generate_panel.h"
+#include "conform/pipelines/generate_panel_json.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -52,24 +52,12 @@ class GeneratePanelCommand : public Command {
   int run() override {
     GeneratePanelOptions options;
     options.panel = o_;
-    options.panel.opening = opening_ == "rectangle" ? PlateOpening::kRoundedRectangle : PlateOpening::kEllipse;
+    options.panel.opening = plate_opening(opening_);
     options.out_path = out_;
     options.panel.progress = stderr_progress(quiet_);
     const GeneratePanelResult r = run_generate_panel(options);
     if (json_) {
-      print_json({{"scan", r.files.scan},
-                  {"nominal", r.files.nominal},
-                  {"contour", r.files.contour},
-                  {"trajectory", r.files.trajectory},
-                  {"truth_trajectory", r.files.truth_trajectory},
-                  {"truth_file", r.files.truth_json},
-                  {"scan_points", r.scan_points},
-                  {"contour_points", r.contour_points},
-                  {"trajectory_rows", r.trajectory_rows},
-                  {"surface_vertices", r.surface_vertices},
-                  {"surface_faces", r.surface_faces},
-                  {"perimeter_mm", r.perimeter_mm},
-                  {"truth", r.truth}});
+      print_json(generate_panel_json(r));
       return 0;
     }
     std::printf("scan        %s (%zu points)\n", r.files.scan.c_str(), r.scan_points);

@@ -7,14 +7,11 @@
 
 #include "command.h"
 #include "number_list.h"
-#include "conform/pipelines/generate_profile.h"
+#include "conform/pipelines/generate_profile_json.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
-
-// deg / 180 first, so that 90 deg is exactly pi / 2.
-double radians(double deg) { return deg / 180.0 * M_PI; }
 
 class GenerateProfileCommand : public Command {
  public:
@@ -53,23 +50,16 @@ class GenerateProfileCommand : public Command {
   }
 
   int run() override {
-    GenerateProfileOptions options;
-    options.scan = o_;
-    options.scan.deformation.twist_rad = radians(twist_deg_);
-    options.scan.deformation.kink_rad = radians(kink_deg_);
+    GenerateProfileRequest request;
+    request.scan = o_;
+    request.twist_deg = twist_deg_;
+    request.kink_deg = kink_deg_;
     const std::vector<double> offset = parse_numbers(offset_, 3, "--offset", "x,y,z");
-    options.scan.offset_mm = Eigen::Vector3d(offset[0], offset[1], offset[2]);
-    options.out_path = out_;
-    const GenerateProfileResult r = run_generate_profile(options);
+    request.offset_mm = Eigen::Vector3d(offset[0], offset[1], offset[2]);
+    request.out_path = out_;
+    const GenerateProfileResult r = run_generate_profile(generate_profile_options(request));
     if (json_) {
-      nlohmann::json j = r.truth;
-      j["edge_path"] = r.edge_path;
-      j["second_edge_path"] = r.second_edge_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.second_edge_path);
-      j["features_path"] = r.features_path;
-      j["truth_path"] = r.truth_path;
-      j["truth_json_path"] = r.truth_json_path;
-      j["features"] = r.features;
-      print_json(j);
+      print_json(generate_profile_json(r));
       return 0;
     }
     std::printf("edge       %s (%zu points, %zu dropped)\n", r.edge_path.c_str(), r.edge_points, r.dropped);

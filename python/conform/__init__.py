@@ -12,7 +12,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "generate_tube_joint", "JOBS"]
 
 
 class Result:
@@ -50,6 +50,18 @@ def _result(job, answer):
     for key in in_memory:  # a temporary file named by the JSON: the input was given in memory
         values[key] = None
     return Result(job, values, dict(arrays))
+
+
+def align(scan, reference, **options):
+    """`conform align`: T_ref_scan of a scan against its reference, convergence, fit figures, the pose's predicted
+    standard deviations, the motions the scan does not constrain and whether to trust the pose (`trust`).
+
+    scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options as the CLI's flags:
+    method ("" automatic, point-to-point, point-to-plane, point-to-surface, plane-to-plane), init (none, pca, fpfh,
+    pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, max_noise_ratio,
+    units, out_transform, out_aligned, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
+    """
+    return _result("align", _conform.align(scan, reference, **options))
 
 
 def compare(scan, reference, **options):
@@ -101,6 +113,26 @@ def tube_joint(leg, stub, **options):
     return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
 
 
+def sicp(contour, scan, trajectory, **options):
+    """`conform sicp`: a nominal deburring trajectory mapped onto the scanned, deformed part (Subdivision-ICP, one
+    rigid transform or the projection model). contour: path (CSV polyline or a mesh whose boundary is taken); scan:
+    path, (N, 3) array, (vertices, faces) pair or conform.Geometry; trajectory: path (CSV x,y,z,nx,ny,nz). Options as
+    the CLI's flags: surface, segment_length, overlap, curvature_radius, model, projection_fit, neighbourhood,
+    stability, max_distance, coarse_max_distance, scan_voxel, no_joint, joint_weight, joint_damping, max_iterations,
+    min_edge_points, edge_radius, max_edge_gap, outlier_ratio, max_offset, normal_smoothing, normals, truth,
+    out_trajectory, out_rows, progress. Arrays: points_mm, normals (M, 3): the compensated trajectory, empty when it
+    cannot be trusted (`trusted` False, the CLI's exit 1)."""
+    return _result("sicp", _conform.sicp(contour, scan, trajectory, **options))
+
+
+def export(path, **options):
+    """`conform export`: a job's path CSV (tube-joint cut or weld, saddle, sicp trajectory, profile, weld-layers) as a
+    robot or CNC program. Options as the CLI's flags: format (krl, rapid, urscript, fanuc, val3, gcode, csv) and out
+    (required), frame (path or (4, 4) T_base_part), speed_mm_s, approach_speed_mm_s, approach_mm, name, tool,
+    work_object, max_points, three_axis, roll_cone_deg, preferred_x ([x, y, z]). `written` lists the files."""
+    return _result("export", _conform.export(path, **options))
+
+
 def generate_tube(out, **options):
     """`conform generate tube`: a synthetic tube scan written to `out` (.ply/.stl) with its truth beside it. Options
     as the CLI's flags: radius, length, arc_deg, arc_center_deg, inner, edge or vertices, axis_point, axis_direction,
@@ -111,5 +143,54 @@ def generate_tube(out, **options):
     return _result("generate_tube", _conform.generate_tube(out, **options))
 
 
+def generate_eroded(out, **options):
+    """`conform generate eroded`: a synthetic eroded blade grid written to `out` (.csv), with the reference grid and
+    the true crater rims beside it. Options as the CLI's flags: rows, cols, length, width, chord_radius, span_radius,
+    twist, crater (a list of [x_mm, y_mm, radius_mm, depth_mm (, inner_radius_mm (, lip_mm, lip_width_mm))]; None:
+    the CLI's one default crater), bump (a list of [x_mm, y_mm, radius_mm, height_mm]), reference_offset,
+    reference_tilt_deg, noise, seed."""
+    return _result("generate_eroded", _conform.generate_eroded(out, **options))
+
+
+def generate_profile(out, **options):
+    """`conform generate profile`: a deformed ship profile's measured edge written to `out` (.csv), with the
+    designed features and the ground truth beside it. Options as the CLI's flags: length, width, bow, bow_asymmetry,
+    bow_out, twist_deg, kink_deg, kink_at, kink_length, spacing, noise, dropouts, second_edge, holes, hole_radius,
+    hole_tx, marking_line, outliers, outlier_mm, offset ([x, y, z]), reverse, seed."""
+    return _result("generate_profile", _conform.generate_profile(out, **options))
+
+
+_PANEL = """Common options as the CLI's flags: band, thickness, surface_edge, contour_spacing, trajectory_spacing,
+    scan_points (0: the shape's default), noise, missing, missing_patches, missing_depth, holes, hole_radius, field,
+    field_wavelength, seed, progress."""
+
+
+def generate_plate(out, **options):
+    """`conform generate plate`: a deformed double-curvature plate with a porthole, its scan written to `out` (.ply)
+    and beside it the nominal surface, contour, trajectory and the true (deformed) trajectory, sicp's inputs. Plate
+    options: radius_x, radius_y, porthole_width, porthole_height, round, clamp_span, sag, bend, twist, opening
+    (ellipse or rectangle), corner_radius. """
+    return _result("generate_plate", _conform.generate_plate(out, **options))
+
+
+def generate_nosecone(out, **options):
+    """`conform generate nosecone`: as generate_plate, a barrel section with a cockpit-like opening. Its options:
+    radius, window_height, window_bottom, window_top, corner_radius, ovality, droop. """
+    return _result("generate_nosecone", _conform.generate_nosecone(out, **options))
+
+
+generate_plate.__doc__ += _PANEL
+generate_nosecone.__doc__ += _PANEL
+
+
+def generate_tube_joint(out_leg, out_stub, out_truth, **options):
+    """`conform generate tube-joint`: a posed leg + stub scan pair (meshes) and the true intersection curve (CSV),
+    tube_joint's input. Options as the CLI's flags: pitch_deg, offset, protrusion (0: automatic), leg_radius,
+    stub_radius, wall, edge, leg_vertices, stub_vertices, ovality_pct, peaking, leg_seam_deg, stub_seam_deg,
+    seam_width, leg_bump and stub_bump (lists of [az_deg, z_mm, height_mm, radius_mm]), noise, leg_arc_deg,
+    stub_length, truth_points, seed, ascii."""
+    return _result("generate_tube_joint", _conform.generate_tube_joint(out_leg, out_stub, out_truth, **options))
+
+
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint}
+JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp, "export": export}

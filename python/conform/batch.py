@@ -22,6 +22,7 @@ import sys
 
 # Per job: the CLI's exit-0 test on its JSON, and the figures summary.csv shows.
 HEADLINES = {
+    "align": (lambda j: j["converged"], ["rms_mm", "inlier_fraction", "trust", "termination"]),
     "compare": (lambda j: j["matched"] > 0,
                 ["points", "matched", "rms_mm", "p95_abs_mm", "in_tolerance_pct", "within_tolerance"]),
     "fit_cylinder": (lambda j: j["ok"], ["radius_mm", "rms_mm", "inlier_fraction", "termination"]),
@@ -29,10 +30,13 @@ HEADLINES = {
     "saddle": (lambda j: j["converged"], ["points", "path_length_mm", "speed_ripple_pct"]),
     "profile": (lambda j: j["ok"], ["edge_points", "edge_rms_mm", "mapped_points", "termination"]),
     "tube_joint": (lambda j: j["ok"], ["points", "path_length_mm", "condition", "termination"]),
+    "export": (lambda j: True, ["frames", "targets", "parts", "max_orientation_step_deg"]),
+    "sicp": (lambda j: j["trusted"], ["rms_mm", "trajectory_rows", "termination"]),
     "weld_layers": (lambda j: j["ok"], ["layers", "paths", "total_length_mm", "damage_coverage_pct", "termination"]),
 }
 INPUTS = {"scan", "reference", "transform", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge",
-          "leg", "stub", "leg_pose", "leg_markers", "stub_markers", "groove_table"}
+          "leg", "stub", "leg_pose", "leg_markers", "stub_markers", "groove_table",
+          "contour", "trajectory", "surface", "truth", "path", "frame"}
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 
 
@@ -57,7 +61,7 @@ def part_options(row, manifest_dir, out_dir):
             options[key] = os.path.join(manifest_dir, text)
         elif key == "out" or key.startswith("out_"):
             options[key] = os.path.join(out_dir, text)
-        elif key in ("axis", "web_normal", "groove_deg", "wall_thickness"):
+        elif key in ("axis", "web_normal", "groove_deg", "wall_thickness", "preferred_x"):
             options[key] = [float(v) for v in re.split(r"[ ,]+", text)]
         else:
             options[key] = _value(text)

@@ -2,6 +2,8 @@
 // What every job binding shares: result vectors handed to numpy without a copy, the JSON as the CLI prints it, and
 // running a job with the GIL released.
 
+#include <algorithm>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +54,19 @@ auto released(const Progress& progress, Run&& run) {
   progress.rethrow();
   return result;
 }
+
+// Keyword arguments the job knows, or TypeError naming the first one it does not (as Python does).
+inline void check_keywords(const char* job, const py::kwargs& kw, std::initializer_list<const char*> known) {
+  for (const auto& item : kw) {
+    const std::string name = py::str(item.first);
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
+      throw py::type_error(std::string(job) + "() got an unexpected keyword argument '" + name + "'");
+    }
+  }
+}
+
+// The generators of the sicp test data (generator_jobs.cpp): generate_plate, generate_nosecone.
+void bind_generator_jobs(py::module_& m);
 
 // The path-planning jobs (toolpath_jobs.cpp): profile, tube_joint, weld_layers, generate_tube.
 void bind_toolpath_jobs(py::module_& m);

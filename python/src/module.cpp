@@ -4,6 +4,7 @@
 // the result's own vectors (moved, not copied), and over the Geometry conform.read returns. The measuring jobs
 // are here, the path-planning ones and the generators in toolpath_jobs.cpp.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -20,8 +21,12 @@
 #include "conform/core/error.h"
 #include "conform/core/io.h"
 #include "conform/core/units.h"
+#include "conform/pipelines/align_json.h"
 #include "conform/pipelines/compare_json.h"
+#include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/generate_eroded_json.h"
+#include "conform/pipelines/generate_profile_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
 #include "inputs.h"
@@ -84,6 +89,141 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   if (inputs.in_memory(options.reference_path)) in_memory.push_back("reference");
   if (inputs.in_memory(options.transform_path)) in_memory.push_back("transform");
   return answer(j, arrays, in_memory);
+}
+
+py::tuple job_align(const py::object& scan, const py::object& reference, const std::string& method,
+                    const std::string& init, double max_distance, double overlap, int max_iterations,
+                    double free_tolerance_mm, double free_tolerance_deg, double max_noise_ratio,
+                    const std::string& units, const py::object& out_transform, const py::object& out_aligned,
+                    const py::object& progress_callback) {
+  Inputs inputs;
+  AlignOptions options;
+  options.scan_path = inputs.geometry(scan, "scan");
+  options.reference_path = inputs.geometry(reference, "reference");
+  options.mm_per_unit = millimetres_per_unit(units);
+  set_align_method(method, &options);
+  set_align_init(init, &options);
+  options.max_distance_mm = max_distance;
+  options.overlap = overlap;
+  options.max_iterations = max_iterations;
+  options.free_tolerance_mm = free_tolerance_mm;
+  options.free_tolerance_deg = free_tolerance_deg;
+  options.max_noise_ratio = max_noise_ratio;
+  options.out_transform_path = path_of(out_transform);
+  options.out_aligned_path = path_of(out_aligned);
+  const Progress progress(progress_callback);
+  options.progress = progress.function();
+  const AlignResult result = released(progress, [&] { return run_align(options); });
+  py::dict arrays;
+  arrays["warnings"] = py::cast(result.warnings);
+  return answer(align_json(result), arrays);
+}
+
+py::tuple job_export(const py::object& path, const std::string& format, const py::object& out,
+                     const py::object& frame, double speed_mm_s, double approach_speed_mm_s, double approach_mm,
+                     const std::string& name, const std::string& tool, const std::string& work_object,
+                     std::size_t max_points, bool three_axis, double roll_cone_deg,
+                     const std::vector<double>& preferred_x) {
+  static const char* const formats[] = {"krl", "rapid", "urscript", "fanuc", "val3", "gcode", "csv"};
+  if (std::find(std::begin(formats), std::end(formats), format) == std::end(formats)) {
+    throw Error("--format: " + format + " not in {krl, rapid, urscript, fanuc, val3, gcode, csv}");
+  }
+  if (preferred_x.size() != 3) throw Error("--preferred-x: give three numbers x,y,z");
+  Inputs inputs;
+  ExportJobOptions o;
+  o.path_csv = path_of(path);
+  o.format = format;
+  o.out_path = path_of(out);
+  o.frame_path = inputs.transform(frame, "frame");
+  o.frames.roll_cone_rad = roll_cone_deg / 180.0 * 3.141592653589793;
+  o.frames.preferred_x = Eigen::Vector3d(preferred_x[0], preferred_x[1], preferred_x[2]);
+  o.program.speed_mm_s = speed_mm_s;
+  o.program.approach_speed_mm_s = approach_speed_mm_s;
+  o.program.approach_mm = approach_mm;
+  o.program.name = name;
+  o.program.tool = tool;
+  o.program.work_object = work_object;
+  o.program.max_points = max_points;
+  o.program.five_axis = !three_axis;
+  check_export_name(o);
+  const ExportJobResult result = [&] {
+    py::gil_scoped_release release;
+    return run_export(o);
+  }();
+  py::dict arrays;
+  arrays["warnings"] = py::cast(export_warnings(result));
+  return answer(export_json(o, result), arrays);
+}
+
+py::tuple job_generate_eroded(const py::object& out, int rows, int cols, double length, double width,
+                              double chord_radius, double span_radius, double twist,
+                              const std::optional<std::vector<std::vector<double>>>& craters,
+                              const std::vector<std::vector<double>>& bumps, double reference_offset,
+                              double reference_tilt_deg, double noise, std::uint64_t seed) {
+  GenerateErodedOptions options;
+  ErodedOptions& o = options.eroded;
+  o.rows = rows;
+  o.cols = cols;
+  o.length_mm = length;
+  o.width_mm = width;
+  o.chord_radius_mm = chord_radius;
+  o.span_radius_mm = span_radius;
+  o.twist_per_mm = twist;
+  if (craters) {
+    o.craters.clear();
+    for (const std::vector<double>& c : *craters) o.craters.push_back(eroded_crater(c));
+  }
+  for (const std::vector<double>& b : bumps) o.bumps.push_back(eroded_bump(b));
+  o.reference_offset_mm = reference_offset;
+  o.reference_tilt_deg = reference_tilt_deg;
+  o.noise_mm = noise;
+  o.seed = seed;
+  options.out_path = path_of(out);
+  const GenerateErodedResult result = [&] {
+    py::gil_scoped_release release;
+    return run_generate_eroded(options);
+  }();
+  return answer(generate_eroded_json(options, result), py::dict());
+}
+
+py::tuple job_generate_profile(const py::object& out, double length, double width, double bow, double bow_asymmetry,
+                               double bow_out, double twist_deg, double kink_deg, double kink_at, double kink_length,
+                               double spacing, double noise, double dropouts, bool second_edge, int holes,
+                               double hole_radius, double hole_tx, bool marking_line, int outliers,
+                               double outlier_mm, const std::vector<double>& offset, bool reverse,
+                               std::uint64_t seed) {
+  if (offset.size() != 3) throw Error("--offset: give three numbers x,y,z");
+  GenerateProfileRequest r;
+  ProfileDeformationOptions& d = r.scan.deformation;
+  d.length_mm = length;
+  d.width_mm = width;
+  d.bow_in_plane_mm = bow;
+  d.bow_asymmetry = bow_asymmetry;
+  d.bow_out_of_plane_mm = bow_out;
+  d.kink_at_mm = kink_at;
+  d.kink_length_mm = kink_length;
+  r.twist_deg = twist_deg;
+  r.kink_deg = kink_deg;
+  r.scan.spacing_mm = spacing;
+  r.scan.noise_mm = noise;
+  r.scan.dropout_fraction = dropouts;
+  r.scan.second_edge = second_edge;
+  r.scan.holes = holes;
+  r.scan.hole_radius_mm = hole_radius;
+  r.scan.hole_tx_mm = hole_tx;
+  r.scan.marking_line = marking_line;
+  r.scan.outliers = outliers;
+  r.scan.outlier_mm = outlier_mm;
+  r.offset_mm = Eigen::Vector3d(offset[0], offset[1], offset[2]);
+  r.scan.reversed = reverse;
+  r.scan.seed = seed;
+  r.out_path = path_of(out);
+  const GenerateProfileOptions options = generate_profile_options(r);
+  const GenerateProfileResult result = [&] {
+    py::gil_scoped_release release;
+    return run_generate_profile(options);
+  }();
+  return answer(generate_profile_json(result), py::dict());
 }
 
 py::tuple job_pose_error(const py::object& a, const py::object& b, const std::string& units) {
@@ -197,6 +337,39 @@ PYBIND11_MODULE(_conform, m) {
   m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
         arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
         arg("out_histogram") = py::none(), arg("units") = "mm", arg("progress") = py::none());
+  const AlignOptions align;
+  m.def("align", &job_align, arg("scan"), arg("reference"), py::kw_only(), arg("method") = "", arg("init") = "none",
+        arg("max_distance") = align.max_distance_mm, arg("overlap") = align.overlap,
+        arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
+        arg("free_tolerance_deg") = align.free_tolerance_deg, arg("max_noise_ratio") = align.max_noise_ratio,
+        arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
+        arg("progress") = py::none());
+  const ProgramOptions program;
+  m.def("export", &job_export, arg("path"), py::kw_only(), arg("format"), arg("out"), arg("frame") = py::none(),
+        arg("speed_mm_s") = program.speed_mm_s, arg("approach_speed_mm_s") = program.approach_speed_mm_s,
+        arg("approach_mm") = program.approach_mm, arg("name") = "", arg("tool") = program.tool,
+        arg("work_object") = program.work_object, arg("max_points") = program.max_points, arg("three_axis") = false,
+        arg("roll_cone_deg") = 0.0, arg("preferred_x") = std::vector<double>{1.0, 0.0, 0.0});
+  const ErodedOptions eroded;
+  m.def("generate_eroded", &job_generate_eroded, arg("out"), py::kw_only(), arg("rows") = eroded.rows,
+        arg("cols") = eroded.cols, arg("length") = eroded.length_mm, arg("width") = eroded.width_mm,
+        arg("chord_radius") = eroded.chord_radius_mm, arg("span_radius") = eroded.span_radius_mm,
+        arg("twist") = eroded.twist_per_mm, arg("crater") = py::none(),
+        arg("bump") = std::vector<std::vector<double>>{}, arg("reference_offset") = eroded.reference_offset_mm,
+        arg("reference_tilt_deg") = eroded.reference_tilt_deg, arg("noise") = eroded.noise_mm,
+        arg("seed") = eroded.seed);
+  const ProfileScanOptions profile;
+  const ProfileDeformationOptions& bend = profile.deformation;
+  m.def("generate_profile", &job_generate_profile, arg("out"), py::kw_only(), arg("length") = bend.length_mm,
+        arg("width") = bend.width_mm, arg("bow") = bend.bow_in_plane_mm, arg("bow_asymmetry") = bend.bow_asymmetry,
+        arg("bow_out") = bend.bow_out_of_plane_mm, arg("twist_deg") = 0.0, arg("kink_deg") = 0.0,
+        arg("kink_at") = bend.kink_at_mm, arg("kink_length") = bend.kink_length_mm,
+        arg("spacing") = profile.spacing_mm, arg("noise") = profile.noise_mm,
+        arg("dropouts") = profile.dropout_fraction, arg("second_edge") = profile.second_edge,
+        arg("holes") = profile.holes, arg("hole_radius") = profile.hole_radius_mm, arg("hole_tx") = profile.hole_tx_mm,
+        arg("marking_line") = profile.marking_line, arg("outliers") = profile.outliers,
+        arg("outlier_mm") = profile.outlier_mm, arg("offset") = std::vector<double>{0.0, 0.0, 0.0},
+        arg("reverse") = profile.reversed, arg("seed") = profile.seed);
   m.def("pose_error", &job_pose_error, arg("transform_a"), arg("transform_b"), py::kw_only(), arg("units") = "mm");
   const FitCylinderJobOptions cylinder;
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
@@ -208,4 +381,5 @@ PYBIND11_MODULE(_conform, m) {
         arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,
         arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none());
   bind_toolpath_jobs(m);
+  bind_generator_jobs(m);
 }

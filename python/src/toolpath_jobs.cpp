@@ -1,5 +1,5 @@
-// conform._conform's path-planning jobs and generators: profile, tube_joint, weld_layers, generate_tube (module.cpp
-// has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request structs.
+// conform._conform's path-planning jobs and a generator: profile, tube_joint, weld_layers, sicp, generate_tube
+// (module.cpp has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request structs.
 
 #include <algorithm>
 #include <array>
@@ -15,6 +15,7 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube_json.h"
 #include "conform/pipelines/profile_json.h"
+#include "conform/pipelines/sicp_json.h"
 #include "conform/pipelines/tube_joint_json.h"
 #include "conform/pipelines/weld_layers_json.h"
 
@@ -228,16 +229,6 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
-// Keyword arguments the job knows, or TypeError naming the first one it does not (as Python does).
-void check_keywords(const char* job, const py::kwargs& kw, std::initializer_list<const char*> known) {
-  for (const auto& item : kw) {
-    const std::string name = py::str(item.first);
-    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
-      throw py::type_error(std::string(job) + "() got an unexpected keyword argument '" + name + "'");
-    }
-  }
-}
-
 Eigen::Vector3d vector_of(const py::handle& value) {
   const std::array<double, 3> v = value.cast<std::array<double, 3>>();
   return {v[0], v[1], v[2]};
@@ -321,6 +312,72 @@ py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
   return answer(generate_tube_json(result), py::dict());
 }
 
+// `conform sicp`: the flags as keyword arguments, unset ones keep SicpJobOptions' defaults.
+py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::object& trajectory,
+                   const py::kwargs& kw) {
+  check_keywords("sicp", kw,
+                 {"surface", "segment_length", "overlap", "curvature_radius", "model", "projection_fit",
+                  "neighbourhood", "stability", "max_distance", "coarse_max_distance", "scan_voxel", "no_joint",
+                  "joint_weight", "joint_damping", "max_iterations", "min_edge_points", "edge_radius", "max_edge_gap",
+                  "outlier_ratio", "max_offset", "normal_smoothing", "normals", "truth", "out_trajectory", "out_rows",
+                  "progress"});
+  const auto take = [&kw](const char* name) {
+    return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
+  };
+  const auto set = [&take](const char* name, auto& field) {
+    const py::object v = take(name);
+    if (!v.is_none()) field = v.cast<std::remove_reference_t<decltype(field)>>();
+  };
+  Inputs inputs;
+  SicpJobOptions options;
+  options.contour_path = path_of(contour);  // a CSV polyline or a mesh whose boundary is taken: a path
+  options.scan_path = inputs.geometry(scan, "scan");
+  options.trajectory_path = path_of(trajectory);
+  options.surface_path = inputs.geometry(take("surface"), "surface");
+  options.truth_path = path_of(take("truth"));
+  options.out_trajectory_path = path_of(take("out_trajectory"));
+  options.out_rows_path = path_of(take("out_rows"));
+  SicpCompensationOptions& o = options.compensation;
+  std::string model = "sicp", fit = "parabola", normals = o.normals.from_scan ? "scan" : "rotate";
+  bool no_joint = false;
+  set("model", model);
+  set("projection_fit", fit);
+  set("normals", normals);
+  set("no_joint", no_joint);
+  set_sicp_choices(model, fit, normals, &o);
+  o.sicp.joint_refinement = !no_joint;
+  set("segment_length", o.sicp.segmentation.segment_length_mm);
+  set("overlap", o.sicp.segmentation.overlap);
+  set("curvature_radius", o.sicp.segmentation.curvature_radius_mm);
+  set("neighbourhood", o.sicp.neighbourhood_mm);
+  set("stability", o.sicp.stability_mm);
+  set("max_distance", o.sicp.max_distance_mm);
+  set("coarse_max_distance", o.sicp.coarse_max_distance_mm);
+  set("scan_voxel", o.sicp.scan_voxel_mm);
+  set("joint_weight", o.sicp.joint.weight);
+  set("joint_damping", o.sicp.joint.damping);
+  set("max_iterations", o.sicp.max_iterations);
+  if (o.sicp.max_iterations < 1 || o.sicp.max_iterations > 1000) throw Error("--max-iterations: not in [1, 1000]");
+  set("min_edge_points", o.checks.min_edge_points);
+  set("edge_radius", o.checks.edge_radius_mm);
+  set("max_edge_gap", o.checks.max_edge_gap_mm);
+  set("outlier_ratio", o.checks.outlier_ratio);
+  set("max_offset", o.checks.max_offset_mm);
+  set("normal_smoothing", o.normals.smooth_mm);
+  const Progress progress(take("progress"));
+  options.progress = progress.function();
+  SicpJobResult result = released(progress, [&] { return run_sicp(options); });
+  const nlohmann::json j = sicp_json(result);
+  // The compensated trajectory only when it can be trusted (the CLI writes it only then): empty otherwise.
+  Trajectory& t = result.compensation.trajectory;
+  if (!result.compensation.trusted) t = Trajectory{};
+  py::dict arrays;
+  arrays["warnings"] = py::cast(result.warnings);
+  arrays["points_mm"] = owned(std::move(t.points));
+  arrays["normals"] = owned(std::move(t.normals));
+  return answer(j, arrays);
+}
+
 }  // namespace
 
 void bind_toolpath_jobs(py::module_& m) {
@@ -346,6 +403,8 @@ void bind_toolpath_jobs(py::module_& m) {
   m.def("tube_joint", &job_tube_joint, arg("leg"), arg("stub"));
   // Keyword arguments as the flags of `conform generate tube` (GenerateTubeRequest holds their defaults).
   m.def("generate_tube", &job_generate_tube, arg("out"));
+  // Keyword arguments as the flags of `conform sicp` (SicpJobOptions holds their defaults).
+  m.def("sicp", &job_sicp, arg("contour"), arg("scan"), arg("trajectory"));
 }
 
 }  // namespace conform::python
