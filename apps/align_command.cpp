@@ -118,9 +118,7 @@ class AlignCommand : public Command {
     const AlignResult result = run_align(options_);
     warn_all(result.warnings);
     if (json_) {
-      nlohmann::json j = align_json(result);
-      j["cad"] = cad_json(result.cad_inputs);
-      print_json(j);
+      print_json(align_json(result));
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "conform/core/cad.h"
+#include "conform/pipelines/cad_json.h"
 
 namespace conform::app {
 
@@ -18,9 +19,5 @@ void add_cad_options(CLI::App& command, CadReadOptions& cad);
 // "cad           part.step: STEP in millimetre (x1 to mm), 1 bodies (1 solids), 12 faces -> 468 triangles ..."
 void print_cad_text(const std::vector<CadReport>& reports, std::FILE* out = stdout);
 
-// [{"file", "format", "file_unit", "mm_per_file_unit", "deflection_mm", "angular_deflection_deg", "faces",
-//   "triangles", "bodies": [{"kind", "faces", "triangles", "failed_faces", "box_min_mm", "box_max_mm",
-//   "volume_mm3", "flipped"}]}]
-nlohmann::json cad_json(const std::vector<CadReport>& reports);
 
 }  // namespace conform::app

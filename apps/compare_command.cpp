@@ -66,9 +66,7 @@ class CompareCommand : public Command {
     warn_all(result.warnings);
     if (!result.deviation.note.empty()) warn(result.deviation.note);
     if (json_) {
-      nlohmann::json j = compare_json(options_, result, units_);
-      j["cad"] = cad_json(result.cad_inputs);
-      print_json(j);
+      print_json(compare_json(options_, result, units_));
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);

@@ -57,9 +57,7 @@ class FitCylinderCommand : public Command {
     const FitCylinderJobResult result = run_fit_cylinder(options_);
     warn_all(result.warnings);
     if (json_) {
-      nlohmann::json j = fit_cylinder_json(result);
-      j["cad"] = cad_json(result.cad_inputs);
-      print_json(j);
+      print_json(fit_cylinder_json(result));
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);

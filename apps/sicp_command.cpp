@@ -98,9 +98,7 @@ class SicpCommand : public Command {
     const SicpJobResult r = run_sicp(options_);
     warn_all(r.warnings);
     if (json_) {
-      nlohmann::json j = sicp_json(r);
-      j["cad"] = cad_json(r.cad_inputs);
-      print_json(j);
+      print_json(sicp_json(r));
     } else {
       print_cad_text(r.cad_inputs);
       print_text(r);

@@ -128,9 +128,7 @@ class TubeJointCommand : public Command {
     const TubeJointJobResult r = run_tube_joint(o);
     const TubeJointSolution& s = r.solution;
     if (json_) {
-      nlohmann::json j = tube_joint_json(r);
-      j["cad"] = cad_json(r.cad_inputs);
-      print_json(j);
+      print_json(tube_joint_json(r));
     } else {
       print_cad_text(r.cad_inputs);
       print_text(r);

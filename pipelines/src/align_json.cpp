@@ -1,5 +1,7 @@
 #include "conform/pipelines/align_json.h"
 
+#include "conform/pipelines/cad_json.h"
+
 #include <cmath>
 #include <vector>
 
@@ -131,6 +133,7 @@ nlohmann::json align_json(const AlignResult& r) {
     j["pair_residuals_mm"] = r.pairs.residuals_mm;
     j["pair_rms_mm"] = r.pairs.rms_mm;
   }
+  j["cad"] = cad_json(r.cad_inputs);
   return j;
 }
 

@@ -92,8 +92,19 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mes
     check.push_back(format("only %.0f%% of the scan lies on the reference", 100.0 * v.overlap));
   }
   if (icp.degeneracy.degenerate()) {
-    check.push_back(std::to_string(icp.degeneracy.directions.size()) +
-                    " motion(s) the scan does not fix were held at the start pose");
+    const std::string held = std::to_string(icp.degeneracy.directions.size()) +
+                             " motion(s) the scan does not fix were held at the start pose";
+    if (options.init == AlignInit::kPca || options.init == AlignInit::kFpfh) {
+      // Held at a start found by a coarse search, a held motion is only as good as that search (about its voxel or
+      // the principal axes' spread): a plausible pose, not a measured one (issue 13's sparse-walls matrix: 1.2 mm
+      // off along held motions, "check" and exit 0).
+      no.push_back(held + ", and that start came from a coarse search (--init " +
+                   (options.init == AlignInit::kPca ? std::string("pca") : std::string("fpfh")) +
+                   "), which does not measure them; give point pairs (markers, --init pairs:FILE), or place the scan "
+                   "where it belongs along those motions and run with --init none");
+    } else {
+      check.push_back(held);
+    }
   }
   v.trust = !no.empty() ? AlignTrust::kNo : !check.empty() ? AlignTrust::kCheck : AlignTrust::kYes;
   v.reasons = no;

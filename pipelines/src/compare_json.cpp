@@ -1,5 +1,7 @@
 #include "conform/pipelines/compare_json.h"
 
+#include "conform/pipelines/cad_json.h"
+
 #include "conform/pipelines/json_values.h"
 
 namespace conform {
@@ -38,6 +40,7 @@ nlohmann::json compare_json(const CompareOptions& options, const CompareResult& 
     j["below_tolerance_pct"] = s.below_pct;
     j["within_tolerance"] = s.within_tolerance();
   }
+  j["cad"] = cad_json(r.cad_inputs);
   return j;
 }
 

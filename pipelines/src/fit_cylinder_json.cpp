@@ -1,5 +1,7 @@
 #include "conform/pipelines/fit_cylinder_json.h"
 
+#include "conform/pipelines/cad_json.h"
+
 #include "conform/pipelines/json_values.h"
 
 namespace conform {
@@ -12,7 +14,7 @@ double degrees(double rad) { return rad / kPi * 180.0; }
 
 nlohmann::json fit_cylinder_json(const FitCylinderJobResult& job) {
   const CylinderFitResult& f = job.fit;
-  return {{"input", job.input_path},
+  nlohmann::json j = {{"input", job.input_path},
           {"points", job.points},
           {"normals", to_string(job.normals)},
           {"ok", f.ok},
@@ -36,6 +38,8 @@ nlohmann::json fit_cylinder_json(const FitCylinderJobResult& job) {
           {"refine_rounds", f.refine_rounds},
           {"solver_iterations", f.solver_iterations},
           {"out", json_path_or_null(job.out_path)}};
+  j["cad"] = cad_json(job.cad_inputs);
+  return j;
 }
 
 }  // namespace conform

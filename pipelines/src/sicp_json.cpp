@@ -1,5 +1,7 @@
 #include "conform/pipelines/sicp_json.h"
 
+#include "conform/pipelines/cad_json.h"
+
 #include <cstddef>
 
 #include "conform/core/error.h"
@@ -102,6 +104,7 @@ nlohmann::json sicp_json(const SicpJobResult& r) {
         {"fit", to_string(p.fit)}, {"samples", p.samples}, {"rms_mm", p.rms_mm}, {"normal", json_of(p.normal)}};
   }
   if (r.error) j["error"] = error_json(*r.error);
+  j["cad"] = cad_json(r.cad_inputs);
   return j;
 }
 

@@ -1,5 +1,7 @@
 #include "conform/pipelines/tube_joint_json.h"
 
+#include "conform/pipelines/cad_json.h"
+
 #include <utility>
 
 #include "conform/core/csv.h"
@@ -147,6 +149,7 @@ nlohmann::json tube_joint_json(const TubeJointJobResult& r) {
     j["where_azimuth_deg"] = degrees(s.check.azimuth_rad);
   }
   add_robustness(r, &j);
+  j["cad"] = cad_json(r.cad_inputs);
   return j;
 }
 
