@@ -116,14 +116,20 @@ def test_progress_and_gil(tubes):
 
     thread = threading.Thread(target=spin)
     thread.start()
+    during = []
     try:
-        before = ticks[0]
-        conform.fit_cylinder(tubes["scan"], seed=1)
-        during = ticks[0] - before
+        # Up to five runs: on a loaded machine (ctest -j2 beside other builds) the spinning thread may get no core
+        # for the length of one run; with the GIL held it could never tick during any of them.
+        for _ in range(5):
+            before = ticks[0]
+            conform.fit_cylinder(tubes["scan"], seed=1)
+            during.append(ticks[0] - before)
+            if during[-1] > 1000:
+                break
     finally:
         stop.set()
         thread.join()
-    assert during > 1000
+    assert max(during) > 1000, during
 
     def fail(stage, fraction):
         raise KeyboardInterrupt("stop")
