@@ -27,64 +27,49 @@ Eigen::Vector3d parse_web_normal(const std::string& text) {
 class ProfileCommand : public Command {
  public:
   void configure(CLI::App& c) override {
-    c.add_option("--edge", edge_,
+    c.add_option("--edge", request_.edge_path,
                  "Measured edge points, CSV x_mm,y_mm,z_mm in measuring order (origin first); required")
         ->required();
-    c.add_option("--features", features_,
+    c.add_option("--features", request_.features_path,
                  "Designed features, .csv (id,type,tx_mm,ty_mm,radius_mm) or .json (docs/profile.md); required")
         ->required();
-    c.add_option("--model", model_, "Edge model: auto (the lower BIC of cubic and spline), cubic, spline")
+    c.add_option("--model", request_.model, "Edge model: auto (the lower BIC of cubic and spline), cubic, spline")
         ->check(CLI::IsMember({"auto", "cubic", "spline"}));
-    CLI::Option* web = c.add_option("--web-normal", web_normal_,
+    web_ = c.add_option("--web-normal", web_normal_,
                                     "Web normal Z, x,y,z (any length; its sign picks the side Tx goes to), machine "
                                     "+z as in the paper");
-    CLI::Option* plane = c.add_flag("--web-plane", web_plane_,
+    CLI::Option* plane = c.add_flag("--web-plane", request_.web_plane,
                                     "Z = the normal of the edge points' plane instead (warned when tilted from +z)");
-    CLI::Option* second = c.add_option("--second-edge", second_edge_,
+    CLI::Option* second = c.add_option("--second-edge", request_.second_edge_path,
                                        "The profile's other edge (+Tx side), CSV x_mm,y_mm,z_mm: local web direction "
                                        "for twist");
-    web->excludes(second);
-    web->excludes(plane);
+    web_->excludes(second);
+    web_->excludes(plane);
     plane->excludes(second);
-    c.add_option("--web-width", web_width_mm_,
+    c.add_option("--web-width", request_.web_width_mm,
                  "Web width, mm: features beyond Tx = width are refused (0: unknown; a second edge measures it)");
-    c.add_option("--direction", direction_,
+    c.add_option("--direction", request_.direction,
                  "Edge points listed from the origin (forward) or from the profile's far end (reverse)")
         ->check(CLI::IsMember({"forward", "reverse"}));
-    c.add_option("--knot-spacing", knot_spacing_mm_, "Spline knot spacing, mm (0: max(10 steps, 250 sigma, 20 mm))");
-    c.add_option("--outlier-sigma", outlier_sigma_,
+    c.add_option("--knot-spacing", request_.knot_spacing_mm, "Spline knot spacing, mm (0: max(10 steps, 250 sigma, 20 mm))");
+    c.add_option("--outlier-sigma", request_.outlier_sigma,
                  "Edge points further than this many robust sigmas from the fitted edge are outliers");
-    c.add_option("--chord-tolerance", chord_tolerance_mm_, "Largest chord error of a mapped outline, mm");
-    c.add_option("--max-gap", max_gap_mm_, "Largest allowed distance between consecutive edge points, mm");
-    c.add_option("--noise", noise_mm_, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
-    c.add_option("--out", out_,
+    c.add_option("--chord-tolerance", request_.chord_tolerance_mm, "Largest chord error of a mapped outline, mm");
+    c.add_option("--max-gap", request_.max_gap_mm, "Largest allowed distance between consecutive edge points, mm");
+    c.add_option("--noise", request_.noise_mm, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
+    c.add_option("--out", request_.out_path,
                  "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   void declare_files(OutputSet& files) override {
-    files.add_inputs({edge_, features_, second_edge_});
-    files.add_output(out_);
+    files.add_inputs({request_.edge_path, request_.features_path, request_.second_edge_path});
+    files.add_output(request_.out_path);
   }
 
   int run() override {
-    ProfileJobOptions options;
-    options.edge_path = edge_;
-    options.features_path = features_;
-    options.second_edge_path = second_edge_;
-    options.out_path = out_;
-    ProfileCompensationOptions& c = options.compensation;
-    parse_profile_edge_model(model_, &c.edge.model);
-    const Eigen::Vector3d z = parse_web_normal(web_normal_);
-    if (second_edge_.empty() && !web_plane_ && z.normalized() != Eigen::Vector3d::UnitZ()) c.web_normal = z;
-    c.fit_web_plane = web_plane_;
-    c.web_width_mm = web_width_mm_;
-    c.reversed = direction_ == "reverse";
-    c.edge.knot_spacing_mm = knot_spacing_mm_;
-    c.edge.outlier_threshold_sigma = outlier_sigma_;
-    c.sampling.chord_tolerance_mm = chord_tolerance_mm_;
-    c.edge.points.max_gap_mm = max_gap_mm_;
-    c.edge.noise_mm = noise_mm_;
+    if (web_->count() > 0) request_.web_normal = parse_web_normal(web_normal_);
+    const ProfileJobOptions options = profile_job_options(request_);
     const ProfileJobResult result = run_profile(options);
     if (json_) {
       print_json(profile_json(options, result));
@@ -132,20 +117,9 @@ class ProfileCommand : public Command {
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());
   }
 
-  std::string edge_;
-  std::string features_;
-  std::string model_ = "auto";
+  ProfileRequest request_;
   std::string web_normal_ = "0,0,1";
-  bool web_plane_ = false;
-  std::string second_edge_;
-  double web_width_mm_ = 0.0;
-  std::string direction_ = "forward";
-  double knot_spacing_mm_ = ProfileEdgeFitOptions{}.knot_spacing_mm;
-  double outlier_sigma_ = ProfileEdgeFitOptions{}.outlier_threshold_sigma;
-  double chord_tolerance_mm_ = 0.05;
-  double max_gap_mm_ = 50.0;
-  double noise_mm_ = 0.0;
-  std::string out_;
+  CLI::Option* web_ = nullptr;
   bool json_ = false;
 };
 

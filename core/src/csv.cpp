@@ -109,9 +109,12 @@ Eigen::MatrixXd CsvTable::numbers(const std::vector<std::string>& names) const {
 
 CsvTable read_csv(const std::string& path) {
   const detail::FileBytes bytes = detail::read_file_bytes(path);
+  return parse_csv(bytes.view(), path);
+}
+
+CsvTable parse_csv(std::string_view text, const std::string& path) {
   CsvTable table;
   table.path = path;
-  std::string_view text = bytes.view();
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte-order mark (spreadsheet exports)
   detail::LineScanner lines(text);
   std::string_view line;

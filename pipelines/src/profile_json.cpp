@@ -1,5 +1,6 @@
 #include "conform/pipelines/profile_json.h"
 
+#include "conform/core/error.h"
 #include "conform/pipelines/json_values.h"
 
 namespace conform {
@@ -11,6 +12,38 @@ nlohmann::json residual_json(const ProfileEdgeResidual& r) {
 }
 
 }  // namespace
+
+ProfileJobOptions profile_job_options(const ProfileRequest& request) {
+  ProfileJobOptions options;
+  options.edge_path = request.edge_path;
+  options.features_path = request.features_path;
+  options.second_edge_path = request.second_edge_path;
+  options.out_path = request.out_path;
+  ProfileCompensationOptions& c = options.compensation;
+  if (!parse_profile_edge_model(request.model, &c.edge.model)) {
+    throw Error("--model: " + request.model + " not in {auto, cubic, spline}");
+  }
+  if (request.direction != "forward" && request.direction != "reverse") {
+    throw Error("--direction: " + request.direction + " not in {forward, reverse}");
+  }
+  const bool second_edge = !request.second_edge_path.empty();
+  if (request.web_plane && second_edge) throw Error("--web-plane excludes --second-edge");
+  if (request.web_normal) {
+    if (request.web_plane || second_edge) throw Error("--web-normal excludes --web-plane and --second-edge");
+    const Eigen::Vector3d& z = *request.web_normal;
+    if (!(z.norm() > 0.0) || !z.allFinite()) throw Error("--web-normal: the web normal must be finite and not zero");
+    if (z.normalized() != Eigen::Vector3d::UnitZ()) c.web_normal = z;
+  }
+  c.fit_web_plane = request.web_plane;
+  c.web_width_mm = request.web_width_mm;
+  c.reversed = request.direction == "reverse";
+  c.edge.knot_spacing_mm = request.knot_spacing_mm;
+  c.edge.outlier_threshold_sigma = request.outlier_sigma;
+  c.sampling.chord_tolerance_mm = request.chord_tolerance_mm;
+  c.edge.points.max_gap_mm = request.max_gap_mm;
+  c.edge.noise_mm = request.noise_mm;
+  return options;
+}
 
 nlohmann::json profile_json(const ProfileJobOptions& options, const ProfileJobResult& job) {
   const ProfileCompensationResult& r = job.compensation;

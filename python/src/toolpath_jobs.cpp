@@ -72,41 +72,30 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
   return answer(weld_layers_json(options, job), arrays);
 }
 
-void set_web_normal(const std::optional<std::vector<double>>& web_normal, bool web_plane, bool second_edge,
-                    ProfileCompensationOptions& c) {
-  if (!web_normal) return;
-  if (web_plane || second_edge) throw Error("--web-normal excludes --web-plane and --second-edge");
-  if (web_normal->size() != 3) throw Error("--web-normal: give three numbers x,y,z");
-  const Eigen::Vector3d z((*web_normal)[0], (*web_normal)[1], (*web_normal)[2]);
-  if (!(z.norm() > 0.0)) throw Error("--web-normal: the web normal must not be zero");
-  if (z.normalized() != Eigen::Vector3d::UnitZ()) c.web_normal = z;
-}
-
 py::tuple job_profile(const py::object& edge, const py::object& features, const std::string& model,
                       const std::optional<std::vector<double>>& web_normal, bool web_plane,
                       const py::object& second_edge, double web_width, const std::string& direction,
                       double knot_spacing, double outlier_sigma, double chord_tolerance, double max_gap, double noise,
                       const py::object& out) {
-  ProfileJobOptions options;
-  options.edge_path = path_of(edge);
-  options.features_path = path_of(features);
-  options.second_edge_path = path_of(second_edge);
-  options.out_path = path_of(out);
-  ProfileCompensationOptions& c = options.compensation;
-  if (!parse_profile_edge_model(model, &c.edge.model))
-    throw Error("--model: " + model + " not in {auto, cubic, spline}");
-  if (direction != "forward" && direction != "reverse")
-    throw Error("--direction: " + direction + " not in {forward, reverse}");
-  if (web_plane && !options.second_edge_path.empty()) throw Error("--web-plane excludes --second-edge");
-  set_web_normal(web_normal, web_plane, !options.second_edge_path.empty(), c);
-  c.fit_web_plane = web_plane;
-  c.web_width_mm = web_width;
-  c.reversed = direction == "reverse";
-  c.edge.knot_spacing_mm = knot_spacing;
-  c.edge.outlier_threshold_sigma = outlier_sigma;
-  c.sampling.chord_tolerance_mm = chord_tolerance;
-  c.edge.points.max_gap_mm = max_gap;
-  c.edge.noise_mm = noise;
+  ProfileRequest request;
+  request.edge_path = path_of(edge);
+  request.features_path = path_of(features);
+  request.second_edge_path = path_of(second_edge);
+  request.out_path = path_of(out);
+  request.model = model;
+  if (web_normal) {
+    if (web_normal->size() != 3) throw Error("--web-normal: give three numbers x,y,z");
+    request.web_normal = Eigen::Vector3d((*web_normal)[0], (*web_normal)[1], (*web_normal)[2]);
+  }
+  request.web_plane = web_plane;
+  request.web_width_mm = web_width;
+  request.direction = direction;
+  request.knot_spacing_mm = knot_spacing;
+  request.outlier_sigma = outlier_sigma;
+  request.chord_tolerance_mm = chord_tolerance;
+  request.max_gap_mm = max_gap;
+  request.noise_mm = noise;
+  const ProfileJobOptions options = profile_job_options(request);
   const ProfileJobResult job = [&] {
     py::gil_scoped_release release;
     return run_profile(options);
@@ -389,14 +378,13 @@ void bind_toolpath_jobs(py::module_& m) {
         arg("depth_threshold") = weld.depth_threshold_mm, arg("outward") = weld.outward_side, arg("bias") = "check",
         arg("min_coverage") = weld.min_coverage_pct, arg("min_crater_coverage") = weld.min_crater_coverage_pct,
         arg("out") = py::none());
-  const ProfileJobOptions profile;
-  m.def("profile", &job_profile, arg("edge"), arg("features"), py::kw_only(), arg("model") = "auto",
-        arg("web_normal") = py::none(), arg("web_plane") = profile.compensation.fit_web_plane,
-        arg("second_edge") = py::none(), arg("web_width") = profile.compensation.web_width_mm,
-        arg("direction") = "forward", arg("knot_spacing") = profile.compensation.edge.knot_spacing_mm,
-        arg("outlier_sigma") = profile.compensation.edge.outlier_threshold_sigma,
-        arg("chord_tolerance") = profile.compensation.sampling.chord_tolerance_mm,
-        arg("max_gap") = profile.compensation.edge.points.max_gap_mm, arg("noise") = profile.compensation.edge.noise_mm,
+  const ProfileRequest profile;
+  m.def("profile", &job_profile, arg("edge"), arg("features"), py::kw_only(), arg("model") = profile.model,
+        arg("web_normal") = py::none(), arg("web_plane") = profile.web_plane,
+        arg("second_edge") = py::none(), arg("web_width") = profile.web_width_mm,
+        arg("direction") = profile.direction, arg("knot_spacing") = profile.knot_spacing_mm,
+        arg("outlier_sigma") = profile.outlier_sigma, arg("chord_tolerance") = profile.chord_tolerance_mm,
+        arg("max_gap") = profile.max_gap_mm, arg("noise") = profile.noise_mm,
         arg("out") = py::none());
   // Keyword arguments as the CLI's flags (tube_joint_json.h's TubeJointRequest holds their defaults); see
   // conform.tube_joint in __init__.py for the list.

@@ -2,7 +2,6 @@
 // bytes twice, and bad input (exit 2, the file and the problem named, nothing written).
 
 #include <algorithm>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "conform/core/csv.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -19,53 +19,31 @@ namespace {
 
 test::RunResult conform(const std::vector<std::string>& args) { return test::run(CONFORM_EXE, args); }
 
-struct Table {
-  std::vector<std::string> columns;
-  std::vector<std::vector<std::string>> rows;
-  std::size_t at(const std::string& name) const {
-    for (std::size_t i = 0; i < columns.size(); ++i) {
-      if (columns[i] == name) return i;
-    }
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-  double number(std::size_t row, const std::string& name) const { return std::stod(rows[row][at(name)]); }
-  Eigen::Vector3d vec(std::size_t row, const std::string& a, const std::string& b, const std::string& c) const {
-    return {number(row, a), number(row, b), number(row, c)};
-  }
-};
+using Table = CsvTable;
 
-Table table(const std::string& text) {
-  Table t;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> fields;
-    std::istringstream row(line);
-    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
-    if (t.columns.empty()) {
-      t.columns = fields;
-    } else {
-      t.rows.push_back(fields);
-    }
-  }
-  return t;
+Table table(const std::string& text) { return parse_csv(text, "test.csv"); }
+
+double number(const Table& t, std::size_t row, const std::string& name) { return t.number(row, t.column(name)); }
+
+Eigen::Vector3d vec(const Table& t, std::size_t row, const std::string& a, const std::string& b, const std::string& c) {
+  return {number(t, row, a), number(t, row, b), number(t, row, c)};
 }
 
 // The tool axis z of an exported frames row: the third column of the quaternion's matrix, written out.
 Eigen::Vector3d tool_axis(const Table& frames, std::size_t row) {
-  const double w = frames.number(row, "qw"), x = frames.number(row, "qx"), y = frames.number(row, "qy"),
-               z = frames.number(row, "qz");
+  const double w = number(frames, row, "qw"), x = number(frames, row, "qx"), y = number(frames, row, "qy"),
+               z = number(frames, row, "qz");
   return {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
 }
 
 // The job's file and its frames: row by row the same positions, z = -n.
 void expect_minus_normal(const Table& job, const Table& frames, const std::vector<std::size_t>& job_rows) {
-  ASSERT_EQ(frames.rows.size(), job_rows.size());
+  ASSERT_EQ(frames.rows(), job_rows.size());
   double worst = 0.0;
   for (std::size_t k = 0; k < job_rows.size(); ++k) {
     const std::size_t r = job_rows[k];
-    EXPECT_LT((frames.vec(k, "x_mm", "y_mm", "z_mm") - job.vec(r, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
-    worst = std::max(worst, (tool_axis(frames, k) + job.vec(r, "nx", "ny", "nz").normalized()).norm());
+    EXPECT_LT((vec(frames, k, "x_mm", "y_mm", "z_mm") - vec(job, r, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
+    worst = std::max(worst, (tool_axis(frames, k) + vec(job, r, "nx", "ny", "nz").normalized()).norm());
   }
   EXPECT_LT(worst, 1e-9);
 }
@@ -135,7 +113,7 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
       {"export", "--path", dir.file("w.csv"), "--format", "csv", "--approach-mm", "0", "--out", dir.file("wf.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table weld = table(test::read_bytes(dir.file("w.csv")));
-  std::vector<std::size_t> all(weld.rows.size());
+  std::vector<std::size_t> all(weld.rows());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   expect_minus_normal(weld, table(test::read_bytes(dir.file("wf.csv"))), all);
 
@@ -148,8 +126,8 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table cut = table(test::read_bytes(dir.file("cut.csv")));
   std::vector<std::size_t> outline;  // centres (i = -1) are not cut
-  for (std::size_t i = 0; i < cut.rows.size(); ++i) {
-    if (cut.number(i, "i") >= 0) outline.push_back(i);
+  for (std::size_t i = 0; i < cut.rows(); ++i) {
+    if (number(cut, i, "i") >= 0) outline.push_back(i);
   }
   expect_minus_normal(cut, table(test::read_bytes(dir.file("cf.csv"))), outline);
 
@@ -159,7 +137,7 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
                dir.file("sf.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table trajectory = table(test::read_bytes(dir.file("plate.trajectory.csv")));
-  std::vector<std::size_t> rows(trajectory.rows.size());
+  std::vector<std::size_t> rows(trajectory.rows());
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   expect_minus_normal(trajectory, table(test::read_bytes(dir.file("sf.csv"))), rows);
 
@@ -177,11 +155,11 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table tube = table(test::read_bytes(dir.file("tc.csv")));
   const Table frames = table(test::read_bytes(dir.file("tf.csv")));
-  ASSERT_EQ(frames.rows.size(), tube.rows.size() + 1);
-  for (std::size_t i = 0; i <= tube.rows.size(); ++i) {
-    const std::size_t row = i % tube.rows.size();
-    EXPECT_LT((frames.vec(i, "x_mm", "y_mm", "z_mm") - tube.vec(row, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
-    EXPECT_LT((tool_axis(frames, i) - tube.vec(row, "dx", "dy", "dz").normalized()).norm(), 1e-9) << i;
+  ASSERT_EQ(frames.rows(), tube.rows() + 1);
+  for (std::size_t i = 0; i <= tube.rows(); ++i) {
+    const std::size_t row = i % tube.rows();
+    EXPECT_LT((vec(frames, i, "x_mm", "y_mm", "z_mm") - vec(tube, row, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
+    EXPECT_LT((tool_axis(frames, i) - vec(tube, row, "dx", "dy", "dz").normalized()).norm(), 1e-9) << i;
   }
 }
 

@@ -46,6 +46,21 @@ TEST(Csv, ToleratesAByteOrderMarkSemicolonsAndUpperCaseNames) {
   EXPECT_TRUE(contains(error_of_number(dir.file("c.csv")), "'1;2'"));
 }
 
+TEST(Csv, ParsesTextInMemoryByTheFilesRules) {
+  const CsvTable table = parse_csv("\xEF\xBB\xBF# comment\nX_MM;id\r\n1.5;7\n", "memory.csv");
+  EXPECT_EQ(table.path, "memory.csv");
+  ASSERT_EQ(table.rows(), 1u);
+  EXPECT_EQ(table.line_numbers, (std::vector<std::size_t>{3}));
+  EXPECT_EQ(table.number(0, table.column("x_mm")), 1.5);
+  EXPECT_EQ(table.integer(0, table.column("id")), 7);
+  try {
+    parse_csv("a,b\n1\n", "memory.csv");
+    ADD_FAILURE() << "a short row was accepted";
+  } catch (const Error& e) {
+    EXPECT_TRUE(contains(e.what(), "memory.csv:2: 1 fields")) << e.what();
+  }
+}
+
 TEST(Csv, ReadsHeaderRowsAndNumbersSkippingCommentsAndBlankLines) {
   test::TempDir dir;
   test::write_bytes(dir.file("t.csv"), "# made by hand\n x_mm , y_mm,\"id\"\r\n\n1.5, -2e3 ,7\n# note\n0,0.25,8\n");

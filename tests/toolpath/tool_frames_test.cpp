@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/saddle.h"
 #include "conform/toolpath/job_paths.h"
@@ -30,26 +30,7 @@ void expect_frame(const ToolFrame& f, const Eigen::Vector3d& z, double tol) {
 }
 
 // A table as read_csv would give it, from text (no file).
-CsvTable table(const std::string& text) {
-  CsvTable t;
-  t.path = "test.csv";
-  std::istringstream in(text);
-  std::string line;
-  std::size_t number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    std::vector<std::string> fields;
-    std::istringstream row(line);
-    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
-    if (t.columns.empty()) {
-      t.columns = fields;
-    } else {
-      t.cells.push_back(fields);
-      t.line_numbers.push_back(number);
-    }
-  }
-  return t;
-}
+CsvTable table(const std::string& text) { return parse_csv(text, "test.csv"); }
 
 ToolPathPoints line_points(std::size_t n, const Eigen::Vector3d& step, const Eigen::Vector3d& axis) {
   ToolPathPoints p;

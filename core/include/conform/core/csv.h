@@ -41,6 +41,8 @@ struct CsvTable {
 // conform::Error naming the file when it cannot be read, has no header, has a duplicated or empty column name, or a
 // row whose field count differs from the header's (naming the line).
 CsvTable read_csv(const std::string& path);
+// The same rules and messages for text already in memory; `path` names it in messages.
+CsvTable parse_csv(std::string_view text, const std::string& path);
 // As above, and every column of `required` must be present (the message lists the missing ones).
 CsvTable read_csv(const std::string& path, const std::vector<std::string>& required);
 
