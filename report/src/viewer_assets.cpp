@@ -25,7 +25,7 @@ ul.warnings{background:#fff4d6;padding:6px 6px 6px 28px;margin:6px 0}
 .side{width:170px;font-size:13px}.side label{display:block;margin:2px 0}
 .side button{margin:4px 0 8px;padding:3px 10px}
 svg.plot{width:100%;max-width:720px;height:auto;font-size:11px;display:block}
-svg.colour-bar{width:150px;height:auto;font-size:11px}
+svg.colour-bar{width:165px;height:auto;font-size:11px}
 svg .grid{stroke:#e4e6ea}svg .frame{fill:none;stroke:#444}svg .title{font-weight:bold;font-size:12px}
 svg .line{fill:none;stroke-width:1.6}svg .band{fill:#2ca02c;fill-opacity:.14}svg .band-label{fill:#1d6b1d}
 svg .mark{stroke:#555;stroke-dasharray:4 3}
