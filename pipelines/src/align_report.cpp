@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "conform/evaluation/deviation.h"
 #include "conform/evaluation/statistics.h"
@@ -88,7 +89,8 @@ html::Page align_report(const AlignOptions& options, const AlignResult& r, const
                         const std::string& date) {
   html::Page page;
   page.job = "align";
-  page.title = "conform align: " + options.scan_path + " to " + options.reference_path;
+  page.title = "conform align: " + std::filesystem::path(options.scan_path).filename().string() + " to " +
+               std::filesystem::path(options.reference_path).filename().string();
   page.inputs.push_back({options.scan_path, std::to_string(r.scan_points) + " points"});
   page.inputs.push_back({options.reference_path, r.reference_faces > 0
                                                      ? std::to_string(r.reference_faces) + " triangles"

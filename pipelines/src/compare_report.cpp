@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "conform/report/deviation_view.h"
 
@@ -29,7 +30,8 @@ html::Page compare_report(const CompareOptions& options, const CompareResult& r,
                           const std::string& date) {
   html::Page page;
   page.job = "compare";
-  page.title = "conform compare: " + options.scan_path + " against " + options.reference_path;
+  page.title = "conform compare: " + std::filesystem::path(options.scan_path).filename().string() + " against " +
+               std::filesystem::path(options.reference_path).filename().string();
   page.inputs.push_back({options.scan_path, std::to_string(r.scan_points) + " points"});
   page.inputs.push_back({options.reference_path, r.reference_faces > 0
                                                      ? std::to_string(r.reference_faces) + " triangles"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "conform/evaluation/statistics.h"
@@ -81,7 +82,7 @@ html::Page fit_cylinder_report(const FitCylinderJobOptions& options, const FitCy
   const CylinderFitResult& f = job.fit;
   html::Page page;
   page.job = "fit-cylinder";
-  page.title = "conform fit-cylinder: " + options.input_path;
+  page.title = "conform fit-cylinder: " + std::filesystem::path(options.input_path).filename().string();
   page.inputs.push_back({options.input_path, std::to_string(job.points) + " points"});
   page.options = {{"threshold_mm", options.fit.threshold_mm}, {"min_radius_mm", options.fit.min_radius_mm},
                   {"normals_k", options.fit.normal_neighbors}, {"seed", options.fit.seed}};

@@ -62,9 +62,11 @@ void add_deviation_view(Page& page, const std::vector<Eigen::Vector3d>& points, 
   std::vector<Rgb> colours;
   colours.reserve(points.size());
   for (double d : deviation_mm) colours.push_back(deviation_colour(d, s));
-  page.scene.add_points(view.scan_name, points, colours, 2.0);
+  // Sparse scans get bigger dots, so that their colours read at a glance.
+  const double size_px = points.size() < 20000 ? 4.0 : points.size() < 100000 ? 3.0 : 2.0;
+  page.scene.add_points(view.scan_name, points, colours, size_px);
   if (reference.has_faces()) {
-    page.scene.add_mesh(view.reference_name, reference, {200, 200, 205}, view.reference_opacity);
+    page.scene.add_mesh(view.reference_name, reference, {170, 176, 188}, view.reference_opacity);
   } else {
     page.scene.add_points(view.reference_name, reference.vertices, kGrey, 1.0).visible = false;
   }

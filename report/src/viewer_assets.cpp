@@ -40,6 +40,7 @@ const char* viewer_js() {
 (function () {
   'use strict';
   var body = document.body;
+  var t0 = window.performance ? performance.now() : 0;
   function fill_json() {
     var text = document.getElementById('conform-result').textContent;
     document.getElementById('conform-json-text').textContent = JSON.stringify(JSON.parse(text), null, 2);
@@ -152,6 +153,7 @@ const char* viewer_js() {
     body.setAttribute('data-view-rect', [Math.round(r.left + window.scrollX), Math.round(r.top + window.scrollY),
                                          Math.round(r.width), Math.round(r.height)].join(','));
     body.setAttribute('data-scene-drawn', String(objects.length));
+    if (window.performance) body.setAttribute('data-render-ms', String(Math.round(performance.now() - t0)));
   }
 
   try { fill_json(); } catch (e) { body.setAttribute('data-json-error', String(e)); }

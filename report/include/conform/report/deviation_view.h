@@ -18,7 +18,7 @@ namespace conform::html {
 struct DeviationView {
   std::string scan_name = "scan";            // the layers' names
   std::string reference_name = "reference";
-  double reference_opacity = 0.35;
+  double reference_opacity = 0.45;
   // Tie the statistics cells to the page's JSON: the pointer of each figure is this prefix + "/mean_mm" etc.
   // (compare's keys); unset: not tied (the figures are not in the job's JSON).
   bool tie_to_json = true;
