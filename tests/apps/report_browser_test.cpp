@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <ostream>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
@@ -40,6 +41,9 @@ struct ReportCase {
   bool deviation_colours = false;  // the view shows the deviation map (its green and red)
   std::size_t min_tied_cells = 5;  // table cells tied to the JSON, at least
 };
+
+// gtest prints a case by its job (the ctest names stay readable and the same from run to run).
+void PrintTo(const ReportCase& c, std::ostream* os) { *os << c.job; }
 
 const std::vector<std::string> kPatch = {"generate", "tube", "--quiet", "--radius", "100", "--length", "80",
                                          "--arc-deg", "60"};
