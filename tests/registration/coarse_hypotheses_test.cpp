@@ -117,11 +117,11 @@ TEST(CoarseHypotheses, FpfhHypothesesAreSeededAndDistinct) {
   for (std::size_t k = 0; k < a.hypotheses.size(); ++k) {
     EXPECT_TRUE(a.hypotheses[k].T_ref_scan.isApprox(b.hypotheses[k].T_ref_scan, 0.0));
     EXPECT_LE(a.hypotheses[k].inlier_fraction, a.inlier_fraction);  // the result is the best one
-    for (std::size_t j = 0; j < k; ++j) {  // distinct: more than 5 degrees or 5 inlier distances apart
+    for (std::size_t j = 0; j < k; ++j) {  // distinct: more than 1 degree or 5 inlier distances apart
       const Eigen::Isometry3d& p = a.hypotheses[j].T_ref_scan;
       const Eigen::Isometry3d& q = a.hypotheses[k].T_ref_scan;
       const Eigen::Vector3d c = test::mean_point(part.scan);
-      EXPECT_TRUE(test::rotation_error_deg(p, q) > 5.0 || (p * c - q * c).norm() > 5.0 * 1.5 * a.voxel_mm);
+      EXPECT_TRUE(test::rotation_error_deg(p, q) > 1.0 || (p * c - q * c).norm() > 5.0 * 1.5 * a.voxel_mm);
     }
   }
   EXPECT_TRUE(a.found);

@@ -39,9 +39,9 @@ struct FpfhOptions {
   double ratio = 0.0;
   std::size_t min_matched_points = 50;
   std::uint64_t seed = 1;
-  // The best this many distinct RANSAC poses are hypotheses (more than 5 degrees or 5 inlier distances apart), so
-  // that a mirror pose on a near-symmetric part meets competition.
-  int hypotheses = 4;
+  // The best this many distinct RANSAC poses are hypotheses (more than 1 degree or 5 inlier distances apart): their
+  // short ICPs (multi_start.h) pick the one that fits, and a mirror pose on a near-symmetric part meets competition.
+  int hypotheses = 6;
 
   bool IsValid(std::string* error) const;
 };

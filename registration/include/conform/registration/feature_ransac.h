@@ -32,9 +32,10 @@ struct FeatureRansacOptions {
   double confidence = 0.999;    // of having drawn an all-inlier sample, for the early stop; 1: never stop early
   std::uint64_t seed = 1;
   // The best this many distinct poses are kept (a pose is distinct when it is more than distinct_deg, or moves the
-  // scan's centre more than distinct_mm, away from every better one; 0 mm: 5 inlier distances).
-  int hypotheses = 4;
-  double distinct_deg = 5.0;
+  // scan's centre more than distinct_mm, away from every better one; 0 mm: 5 inlier distances). Each is refitted in
+  // closed form to every correspondence it explains (LO-RANSAC, Chum et al. 2003) before it is returned.
+  int hypotheses = 6;
+  double distinct_deg = 1.0;
   double distinct_mm = 0.0;
   // Scan points each surviving pose is scored on (evenly strided; all when fewer).
   std::size_t score_points = 2000;
