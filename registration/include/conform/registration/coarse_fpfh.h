@@ -1,6 +1,6 @@
 #pragma once
 // Coarse alignment from local shape: both clouds cleared of stray points (statistical outlier removal) and
-// voxel-downsampled, PCA normals (turned away from each cloud's
+// voxel-downsampled at a voxel from the data, PCA normals (turned away from each cloud's
 // centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), mutual nearest-feature
 // correspondences, and RANSAC over them with pre-rejection of inconsistent samples (feature_ransac.h).
 // Unlike PCA it works for partial overlap, as long as the overlap has distinctive shape.
@@ -28,8 +28,9 @@ struct FpfhOptions {
   int max_iterations = 100000;        // RANSAC samples at most (feature_ransac.h; it stops early at `confidence`)
   double confidence = 0.999;
   double similarity = 0.9;  // pre-rejection: edge-length ratio of sample and match triangles, in [0, 1)
-  // Before downsampling, points whose mean distance to their outlier_neighbours nearest is more than outlier_sigmas
-  // standard deviations above the mean are dropped (stray returns); 0 neighbours: none dropped.
+  // Before downsampling (on a voxel grid a third of voxel_mm), points whose mean distance to their
+  // outlier_neighbours nearest is more than outlier_sigmas standard deviations above the mean are dropped (stray
+  // returns); 0 neighbours: none dropped.
   int outlier_neighbours = 16;
   double outlier_sigmas = 2.0;
   // Match filters on the correspondences RANSAC draws from (each downsampled scan point and the reference point of
