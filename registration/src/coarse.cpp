@@ -56,11 +56,17 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
     result.fpfh_used = true;
     result.fpfh = fpfh_ransac(scan, reference.points(), options.fpfh);
     report(options.progress, "coarse: fpfh", 1.0);
+    int rank = 0;
     for (const FpfhHypothesis& h : result.fpfh.hypotheses) {
-      if (h.found) starts.push_back({"fpfh seed " + std::to_string(h.seed), h.T_ref_scan});
+      if (h.found) starts.push_back({"fpfh hypothesis " + std::to_string(++rank), h.T_ref_scan});
     }
   }
-  for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
+  // With FPFH the principal-axes starts join only when no hypothesis was found: the best start's probes turned by the
+  // reference's own symmetries (multi_start.h) are the mirror poses a near-symmetric part offers, and on a partial
+  // scan the scan's axes are not the reference's.
+  if (starts.empty()) {
+    for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
+  }
   MultiStartOptions multi_start = options.multi_start;
   if (multi_start.inlier_distance_mm == 0.0 && options.inlier_noise_factor > 0.0) {
     Eigen::AlignedBox3d box;

@@ -1,19 +1,17 @@
-// PCL's RANSAC templates, instantiated here, make GCC 12 report -Warray-bounds false positives inside Eigen's SSE
-// loads of 3-float vectors (Umeyama in TransformationEstimationSVD). The warning is located in the intrinsics
-// header, so the pragma must cover its first inclusion, before any other include.
+// PCL's templates, instantiated here, make GCC 12 report -Warray-bounds false positives inside Eigen's SSE loads of
+// 3-float vectors. The warning is located in the intrinsics header, so the pragma must cover its first inclusion,
+// before any other include.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Warray-bounds"
 #include "conform/registration/coarse_fpfh.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <utility>
 
 #include <pcl/features/fpfh_omp.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/registration/sample_consensus_prerejective.h>
 #include <pcl/search/kdtree.h>
 
 #include "conform/core/cloud.h"
@@ -21,6 +19,7 @@
 #include "conform/core/nearest_neighbors.h"
 #include "conform/core/normals.h"
 #include "conform/registration/downsample.h"
+#include "conform/registration/feature_ransac.h"
 #pragma GCC diagnostic pop
 
 namespace conform {
@@ -32,6 +31,11 @@ using Features = pcl::PointCloud<pcl::FPFHSignature33>;
 
 constexpr std::size_t kMinPoints = 10;
 constexpr int kNormalNeighbours = 16;
+constexpr double kMinPointsPerVoxel = 4.0;
+constexpr int kRefineIterations = 30;  // ICP steps refining each RANSAC pose on the downsampled clouds  // the automatic voxel: at least 2 point spacings on a surface
+// Stray points are removed on a first voxel grid this much finer than the features' (a tenth of the points' cost;
+// a stray point stays alone in its small voxel, a cluster of copies becomes one point, alone).
+constexpr double kCleaningVoxel = 1.0 / 3.0;
 
 struct Described {
   Points::Ptr points{new Points};
@@ -64,8 +68,10 @@ std::vector<Eigen::Vector3d> without_outliers(const std::vector<Eigen::Vector3d>
 
 Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin, double voxel_mm,
                    double radius_mm, const FpfhOptions& options, const char* what) {
-  const std::vector<Eigen::Vector3d> down =
-      voxel_downsample(without_outliers(input, origin, options.outlier_neighbours, options.outlier_sigmas), voxel_mm);
+  const std::vector<Eigen::Vector3d> down = voxel_downsample(
+      without_outliers(voxel_downsample(input, kCleaningVoxel * voxel_mm), origin, options.outlier_neighbours,
+                       options.outlier_sigmas),
+      voxel_mm);
   if (down.size() < kMinPoints) {
     throw Error(std::string("FPFH: the ") + what + " has " + std::to_string(down.size()) + " points after " +
                 std::to_string(voxel_mm) + " mm voxels; at least " + std::to_string(kMinPoints) +
@@ -96,79 +102,79 @@ Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vecto
   return d;
 }
 
-// At most `count` of the described points (and their features), at even steps.
-Described strided(const Described& all, std::size_t count) {
-  const std::size_t n = all.points->size();
-  if (n <= count) return all;
-  Described out;
-  for (std::size_t k = 0; k < count; ++k) {
-    out.points->push_back((*all.points)[k * n / count]);
-    out.features->push_back((*all.features)[k * n / count]);
-  }
-  return out;
-}
-
-// The scan points whose feature match passes the filters: mutual (the reference feature nearest to the scan's has
-// that scan feature as its own nearest) and the ratio test (nearest over second-nearest feature distance below
-// `ratio`, Lowe 2004). All of them when fewer than `minimum` pass (the filters are a help, not a condition).
-Described matched(const Described& s, const Described& r, bool mutual, double ratio, std::size_t minimum) {
-  if (!mutual && ratio <= 0.0) return s;
+// Correspondences (scan point, reference point of the nearest feature) that pass the filters: mutual (the scan
+// feature nearest to that reference feature is the scan's own) and the ratio test (nearest over second-nearest
+// feature distance below `ratio`, Lowe 2004). All nearest-feature pairs when fewer than `minimum` pass (the filters
+// are a help, not a condition).
+std::vector<std::pair<int, int>> matched(const Described& s, const Described& r, bool mutual, double ratio,
+                                         std::size_t minimum) {
   pcl::KdTreeFLANN<pcl::FPFHSignature33> in_reference, in_scan;
   in_reference.setInputCloud(r.features);
   if (mutual) in_scan.setInputCloud(s.features);
-  Described out;
+  std::vector<std::pair<int, int>> all, kept;
   std::vector<int> index(2), back(1);
   std::vector<float> distance(2), back_distance(1);
   for (std::size_t i = 0; i < s.points->size(); ++i) {
     const pcl::FPFHSignature33& f = (*s.features)[i];
     if (!std::isfinite(f.histogram[0])) continue;
     if (in_reference.nearestKSearch(f, 2, index, distance) < 2) continue;
+    all.emplace_back(static_cast<int>(i), index[0]);
     if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
     if (mutual && (in_scan.nearestKSearch((*r.features)[static_cast<std::size_t>(index[0])], 1, back,
                                           back_distance) < 1 ||
                    back[0] != static_cast<int>(i))) {
       continue;
     }
-    out.points->push_back((*s.points)[i]);
-    out.features->push_back(f);
+    kept.emplace_back(static_cast<int>(i), index[0]);
   }
-  return out.points->size() >= minimum ? out : s;
+  return kept.size() >= minimum ? kept : all;
 }
 
-// From the data: 1/30 of the reference's extent, but at least twice either side's point spacing, so that a voxel
-// holds a point and the feature radius (5 voxels) holds enough neighbours for a histogram on a sparse scan.
-double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference) {
+std::vector<Eigen::Vector3d> as_vectors(const Points& points) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (const pcl::PointXYZ& p : points) out.push_back(p.getVector3fMap().cast<double>());
+  return out;
+}
+
+// How many voxels of size v hold points: their cells packed into one 64-bit key each (21 bits an axis, from the
+// lowest cell), sorted; voxel_downsample's count when the cloud spans more than 2^21 cells.
+double occupied_voxels(const std::vector<Eigen::Vector3d>& points, double v) {
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  const Eigen::Vector3d low = (box.min() / v).array().floor();
+  if (!(((box.max() / v).array().floor() - low.array()).maxCoeff() < 2097151.0)) {
+    return static_cast<double>(voxel_downsample(points, v).size());
+  }
+  std::vector<std::uint64_t> keys;
+  keys.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d c = (p / v).array().floor() - low.array();
+    keys.push_back(static_cast<std::uint64_t>(c.x()) << 42 | static_cast<std::uint64_t>(c.y()) << 21 |
+                   static_cast<std::uint64_t>(c.z()));
+  }
+  std::sort(keys.begin(), keys.end());
+  return static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+// From the data: the voxel that leaves about `target` points on the side with less surface (the overlap is at most
+// that side's surface, and the features must resolve its shape: 1/30 of the reference's diagonal, the rule before,
+// left a ribbed plate's 6 mm ribs one voxel wide and 5 % of the matches right), and at least 2 point spacings on
+// both sides (4 points a voxel), so that a voxel holds points and a histogram holds neighbours. A surface leaves
+// about area / voxel^2 points: two passes from 1/30 of the reference's diagonal find the size.
+double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& reference,
+                  std::size_t target) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : reference) box.extend(p);
-  return std::max({box.diagonal().norm() / 30.0, 2.0 * median_spacing(scan, KdTree(scan)),
-                   2.0 * median_spacing(reference, KdTree(reference))});
-}
-
-// One RANSAC run, seeded; the pose in the local (origin-shifted) frames.
-FpfhHypothesis ransac_once(const Described& sample, const Described& r, const FpfhOptions& options,
-                           std::uint64_t seed, double v) {
-  pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, pcl::FPFHSignature33> ransac;
-  ransac.setInputSource(sample.points);
-  ransac.setSourceFeatures(sample.features);
-  ransac.setInputTarget(r.points);
-  ransac.setTargetFeatures(r.features);
-  ransac.setMaximumIterations(options.max_iterations);
-  ransac.setNumberOfSamples(3);
-  ransac.setCorrespondenceRandomness(options.correspondence_randomness);
-  ransac.setSimilarityThreshold(static_cast<float>(options.similarity));
-  ransac.setMaxCorrespondenceDistance(options.inlier_distance * v);
-  ransac.setInlierFraction(static_cast<float>(options.min_inlier_fraction));
-  std::srand(static_cast<unsigned>(seed ^ (seed >> 32)));
-  Points aligned;
-  ransac.align(aligned);
-  FpfhHypothesis h;
-  h.seed = seed;
-  h.found = ransac.hasConverged();
-  h.inlier_fraction = static_cast<double>(ransac.getInliers().size()) / static_cast<double>(sample.points->size());
-  const Eigen::Matrix4d local = ransac.getFinalTransformation().cast<double>();
-  h.T_ref_scan.linear() = Eigen::Quaterniond(local.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
-  h.T_ref_scan.translation() = local.topRightCorner<3, 1>();
-  return h;
+  double v = box.diagonal().norm() / 30.0;
+  const auto count = [&](const std::vector<Eigen::Vector3d>& points) { return occupied_voxels(points, v); };
+  for (int pass = 0; pass < 2; ++pass) v *= std::sqrt(std::min(count(scan), count(reference)) / static_cast<double>(target));
+  double floor = v;
+  for (const std::vector<Eigen::Vector3d>* side : {&scan, &reference}) {
+    const double per_voxel = static_cast<double>(side->size()) / count(*side);
+    if (per_voxel < kMinPointsPerVoxel) floor = std::max(floor, v * std::sqrt(kMinPointsPerVoxel / per_voxel));
+  }
+  return floor;
 }
 
 }  // namespace
@@ -183,14 +189,14 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "inlier_distance must be finite and > 0 voxels";
   } else if (!(min_inlier_fraction >= 0.0 && min_inlier_fraction <= 1.0)) {
     why = "min_inlier_fraction must be in [0, 1]";
-  } else if (ransac_points < 3) {
-    why = "ransac_points must be >= 3";
-  } else if (runs < 1) {
-    why = "runs must be >= 1";
+  } else if (target_points < kMinPoints) {
+    why = "target_points must be >= " + std::to_string(kMinPoints);
+  } else if (hypotheses < 1) {
+    why = "hypotheses must be >= 1";
   } else if (max_iterations < 1) {
     why = "max_iterations must be >= 1";
-  } else if (correspondence_randomness < 1) {
-    why = "correspondence_randomness must be >= 1";
+  } else if (!(confidence > 0.0 && confidence <= 1.0)) {
+    why = "confidence must be in (0, 1]";
   } else if (!(ratio >= 0.0 && ratio <= 1.0)) {
     why = "ratio must be in [0, 1] (0: no ratio test)";
   } else if (outlier_neighbours < 0 || !(outlier_sigmas > 0.0) || !std::isfinite(outlier_sigmas)) {
@@ -211,7 +217,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   if (!options.IsValid(&why)) throw Error("FPFH options: " + why);
   if (reference.empty() || scan.empty()) throw Error("FPFH: the scan or the reference has no points");
   FpfhResult result;
-  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(scan, reference);
+  result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(scan, reference, options.target_points);
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
@@ -220,21 +226,32 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   result.scan_points = s.points->size();
   result.reference_points = r.points->size();
 
-  const Described sample =
-      strided(matched(s, r, options.mutual, options.ratio, options.min_matched_points), options.ransac_points);
-  result.matched_points = sample.points->size();
-  for (int run = 0; run < options.runs; ++run) {
-    const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(run);
-    FpfhHypothesis h = ransac_once(sample, r, options, seed, v);
+  const std::vector<std::pair<int, int>> matches =
+      matched(s, r, options.mutual, options.ratio, options.min_matched_points);
+  result.matched_points = matches.size();
+  if (matches.size() < 3) return result;
+  FeatureRansacOptions ransac;
+  ransac.inlier_distance_mm = options.inlier_distance * v;
+  ransac.similarity = options.similarity;
+  ransac.max_iterations = options.max_iterations;
+  ransac.confidence = options.confidence;
+  ransac.seed = options.seed;
+  ransac.hypotheses = options.hypotheses;
+  const FeatureRansacResult found = feature_ransac(as_vectors(*s.points), as_vectors(*r.points), matches, ransac);
+  result.iterations = found.iterations;
+  result.match_share = found.match_share;
+  for (const RansacPose& pose : found.poses) {
+    FpfhHypothesis h;
     // T_ref_scan = shift(ref_origin) * T_local * shift(-scan_origin).
-    h.T_ref_scan = Eigen::Translation3d(ref_origin) * h.T_ref_scan * Eigen::Translation3d(-scan_origin);
-    const bool best = h.found && (!result.found || h.inlier_fraction > result.inlier_fraction);
-    if (best || (run == 0 && !h.found)) {
-      result.found = h.found;
-      result.inlier_fraction = h.inlier_fraction;
-      result.T_ref_scan = h.T_ref_scan;
-    }
+    h.T_ref_scan = Eigen::Translation3d(ref_origin) * pose.T_ref_scan * Eigen::Translation3d(-scan_origin);
+    h.inlier_fraction = pose.inlier_share;
+    h.found = pose.inlier_share >= options.min_inlier_fraction;
     result.hypotheses.push_back(h);
+  }
+  if (!result.hypotheses.empty()) {
+    result.found = result.hypotheses.front().found;
+    result.inlier_fraction = result.hypotheses.front().inlier_fraction;
+    result.T_ref_scan = result.hypotheses.front().T_ref_scan;
   }
   return result;
 }

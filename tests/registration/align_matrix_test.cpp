@@ -21,6 +21,7 @@
 #include <string>
 
 #include "boss_plate.h"
+#include "ribbed_boss_plate.h"
 #include "conform/core/io.h"
 #include "conform/datasets/random.h"
 #include "conform/datasets/ribbed_plate.h"
@@ -37,6 +38,7 @@ constexpr int kSeeds = 10;
 // One trial: the reference (its frame), the scan (its frame), the truth T_ref_scan.
 struct Trial {
   std::vector<Eigen::Vector3d> reference, scan;
+  std::vector<Face> reference_faces;  // a mesh reference when not empty
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
 };
 
@@ -83,7 +85,14 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
     options.seed = static_cast<std::uint64_t>(seed);
     if (adjust) adjust(options);
     write_points(options.scan_path, t.scan);
-    write_points(options.reference_path, t.reference);
+    if (t.reference_faces.empty()) {
+      write_points(options.reference_path, t.reference);
+    } else {
+      Mesh mesh;
+      mesh.vertices = t.reference;
+      mesh.faces = t.reference_faces;
+      write_mesh(options.reference_path, mesh);
+    }
     const AlignResult r = run_align(options);
     const bool accepted = r.verdict.trust != AlignTrust::kNo;
     const bool ok = right(t, r);
@@ -162,7 +171,7 @@ TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
       "noise and outliers",
       [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); }, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.start_right, 6);  // measured 8 (1 without the outlier removal before FPFH)
+  EXPECT_GE(t.start_right, 6);  // measured 6 (main's PCL RANSAC: 8; 1 without the outlier removal before FPFH)
 }
 
 // A coarse profiler pitch: steep walls (0.3 mm run) under points ~2 mm apart, so that the walls, the only thing
@@ -179,7 +188,7 @@ TEST(AlignMatrixWorkpiece, SparseWalls) {
   };
   const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.start_right, 4);  // measured 6
+  EXPECT_GE(t.start_right, 4);  // measured 5 (main's PCL RANSAC: 6)
 }
 
 // Random points on a cylinder's side (axis z, centred), radius r, length l, over `arc` radians, with radial noise.
@@ -237,6 +246,42 @@ TEST(AlignMatrixSymmetry, BossPlateNeverTheMirror) {
   };
   const Tally t = run_matrix("boss plate", make, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
+}
+
+}  // namespace
+}  // namespace conform
+
+namespace conform {
+namespace {
+
+// Issue 13's mesh pair, smaller: a partial scan (the 65 % of the ribbed plate with a boss at x < 30 mm, 0.02 mm
+// noise, ~20k points) in a random frame against the plate's height-field mesh (1 mm grid, 60k faces), coarse
+// (FPFH) + fine at the defaults. Right: within 0.05 degrees and 0.05 mm at the scan's centroid (at this density the
+// fine fit lands 0.001-0.011 deg and 0.004-0.03 mm off; the full-size pair's 0.005 deg / 0.01 mm is the bench's);
+// otherwise refused. With the features at 1/30 of the reference's diagonal (8.3 mm voxels: the 6 mm ribs one voxel
+// wide) the full-size pair's coarse step found no pose.
+TEST(AlignMatrixBossPlateMesh, PartialScanAgainstMesh) {
+  const auto make = [](int seed) {
+    Random random(static_cast<std::uint64_t>(500 + seed));
+    RibbedPlateOptions plate;
+    plate.points = 30000;
+    plate.seed = static_cast<std::uint64_t>(600 + seed);
+    const Mesh mesh = test::ribbed_boss_plate_mesh(plate, 1.0);
+    Trial t;
+    t.reference = mesh.vertices;
+    t.reference_faces = mesh.faces;
+    t.truth = test::random_motion(random, M_PI, 50.0, Eigen::Vector3d::Zero());
+    std::vector<Eigen::Vector3d> scan;
+    for (const Eigen::Vector3d& p : ribbed_plate_samples(plate)) {
+      if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + test::boss_height(p.x(), p.y()));
+    }
+    t.scan = test::transformed_points(scan, t.truth.inverse());
+    return t;
+  };
+  const Tally t = run_matrix("boss plate mesh", make, within(0.05, 0.05));
+  EXPECT_EQ(t.wrong_accepted, 0);
+  EXPECT_GE(t.right, 6);        // measured 7 (3 refused as ambiguous by the multi-start test)
+  EXPECT_GE(t.start_right, 9);  // measured 10; 0 with the features at 1/30 of the reference's diagonal
 }
 
 }  // namespace

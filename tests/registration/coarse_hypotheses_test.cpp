@@ -102,22 +102,34 @@ Tally partial_box_trials(int seeds) {
   return tally;
 }
 
-// Every RANSAC run is a hypothesis of its own, seeded seed, seed + 1, ...; the same options give the same poses.
-TEST(CoarseHypotheses, FpfhRunsAreSeededHypotheses) {
+// The hypotheses are the best distinct RANSAC poses, best first; the same options give the same poses, and a
+// different seed still finds the pose.
+TEST(CoarseHypotheses, FpfhHypothesesAreSeededAndDistinct) {
   const test::TestPart part = test::make_test_part(test::PartKind::kBox);
   FpfhOptions options;
-  options.runs = 3;
+  options.hypotheses = 3;
   options.seed = 7;
   const FpfhResult a = fpfh_ransac(part.scan, part.reference.vertices, options);
   const FpfhResult b = fpfh_ransac(part.scan, part.reference.vertices, options);
-  ASSERT_EQ(a.hypotheses.size(), 3u);
-  for (std::size_t k = 0; k < 3; ++k) {
-    EXPECT_EQ(a.hypotheses[k].seed, 7u + k);
+  ASSERT_FALSE(a.hypotheses.empty());
+  ASSERT_LE(a.hypotheses.size(), 3u);
+  ASSERT_EQ(a.hypotheses.size(), b.hypotheses.size());
+  for (std::size_t k = 0; k < a.hypotheses.size(); ++k) {
     EXPECT_TRUE(a.hypotheses[k].T_ref_scan.isApprox(b.hypotheses[k].T_ref_scan, 0.0));
-    EXPECT_LE(a.hypotheses[k].inlier_fraction, a.inlier_fraction);  // the result is the best found one
+    EXPECT_LE(a.hypotheses[k].inlier_fraction, a.inlier_fraction);  // the result is the best one
+    for (std::size_t j = 0; j < k; ++j) {  // distinct: more than 1 degree or 5 inlier distances apart
+      const Eigen::Isometry3d& p = a.hypotheses[j].T_ref_scan;
+      const Eigen::Isometry3d& q = a.hypotheses[k].T_ref_scan;
+      const Eigen::Vector3d c = test::mean_point(part.scan);
+      EXPECT_TRUE(test::rotation_error_deg(p, q) > 1.0 || (p * c - q * c).norm() > 5.0 * 1.5 * a.voxel_mm);
+    }
   }
   EXPECT_TRUE(a.found);
+  EXPECT_GT(a.iterations, 0);
   EXPECT_LT(test::rotation_error_deg(a.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);  // scan and part coincide
+  options.seed = 8;
+  const FpfhResult c = fpfh_ransac(part.scan, part.reference.vertices, options);
+  EXPECT_LT(test::rotation_error_deg(c.T_ref_scan, Eigen::Isometry3d::Identity()), 2.0);
 }
 
 // The match filters (mutual nearest features, the ratio test) thin the points RANSAC draws from and keep the pose;
@@ -126,7 +138,8 @@ TEST(CoarseHypotheses, FpfhRunsAreSeededHypotheses) {
 TEST(CoarseHypotheses, FpfhMatchFiltersKeepThePose) {
   const test::TestPart part = test::make_test_part(test::PartKind::kBox);
   FpfhOptions options;
-  options.runs = 2;
+  options.hypotheses = 2;
+  options.mutual = false;
   const FpfhResult plain = fpfh_ransac(part.scan, part.reference.vertices, options);
   options.mutual = true;
   options.ratio = 0.9;

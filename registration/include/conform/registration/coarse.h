@@ -1,8 +1,9 @@
 #pragma once
 // Coarse alignment, so that a user need not pre-place the scan: the starts of one method (principal axes with
 // their sign ambiguities, FPFH + RANSAC, or just the identity), ranked by a short ICP from each (multi_start.h).
-// With FPFH every RANSAC run's hypothesis is a start and the principal-axes starts always join them (their sign
-// choices are exactly a near-symmetric part's mirror poses): the best start, by inlier share, wins.
+// With FPFH every RANSAC hypothesis is a start, and the principal-axes starts join them only when RANSAC found none
+// (a near-symmetric part's mirror poses come from the reference-symmetry probes of multi_start.h): the best start,
+// by inlier share, wins.
 
 #include <string>
 #include <vector>
@@ -16,7 +17,7 @@ namespace conform {
 enum class CoarseMethod {
   kNone,  // start from the given transform (the identity: the scan is already roughly in place)
   kPca,   // principal axes, every sign combination tried
-  kFpfh,  // FPFH + RANSAC, joined by the principal-axes starts when its answer is weak
+  kFpfh,  // FPFH + RANSAC, joined by the principal-axes starts when it finds no hypothesis
 };
 
 const char* to_string(CoarseMethod method);

@@ -1,13 +1,11 @@
 #pragma once
 // Coarse alignment from local shape: both clouds cleared of stray points (statistical outlier removal) and
-// voxel-downsampled, PCA normals (turned away from each cloud's
-// centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), and RANSAC over feature
-// matches with pre-rejection of inconsistent samples (Buch et al. 2013, PCL's SampleConsensusPrerejective).
+// voxel-downsampled at a voxel from the data, PCA normals (turned away from each cloud's
+// centroid), Fast Point Feature Histograms (Rusu et al. 2009, PCL's FPFHEstimationOMP), mutual nearest-feature
+// correspondences, and RANSAC over them with pre-rejection of inconsistent samples (feature_ransac.h).
 // Unlike PCA it works for partial overlap, as long as the overlap has distinctive shape.
 //
-// PCL's RANSAC draws from std::rand(): fpfh_ransac seeds it (std::srand) with options.seed before it runs, so the
-// result is reproducible, but calling it changes the global rand() state and it must not run concurrently with
-// other users of std::rand().
+// RANSAC is conform's own (feature_ransac.h): seeded, parallel, the same result for any number of threads.
 
 #include <cstddef>
 #include <cstdint>
@@ -20,50 +18,52 @@
 namespace conform {
 
 struct FpfhOptions {
-  double voxel_mm = 0.0;  // downsampling voxel; 0: the reference's bounding-box diagonal / 30, >= 2 point spacings
+  // Downsampling voxel; 0: automatic, the side with less surface left with about target_points points (at least 2
+  // point spacings on both sides).
+  double voxel_mm = 0.0;
+  std::size_t target_points = 2000;
   double feature_radius = 5.0;        // FPFH support radius, in voxels
   double inlier_distance = 1.5;       // a RANSAC inlier is within this many voxels of the reference
-  double min_inlier_fraction = 0.25;  // of the RANSAC scan points, for a hypothesis to count
-  int max_iterations = 3000;          // RANSAC hypotheses
-  // RANSAC samples from, and scores each hypothesis on, at most this many of the downsampled scan points (evenly
-  // strided; every reference point stays a candidate match): a hypothesis costs one nearest-neighbour search per
-  // point, and a few hundred points judge a coarse pose as well as thousands.
-  std::size_t ransac_points = 400;
-  int correspondence_randomness = 3;  // a sample's match is drawn from its this many nearest features
-  double similarity = 0.9;            // pre-rejection: edge-length ratio of sample and match polygons, in [0, 1)
-  // Before downsampling, points whose mean distance to their outlier_neighbours nearest is more than outlier_sigmas
-  // standard deviations above the mean are dropped (stray returns); 0 neighbours: none dropped.
+  double min_inlier_fraction = 0.25;  // of the downsampled scan points, for a hypothesis to count
+  int max_iterations = 100000;        // RANSAC samples at most (feature_ransac.h; it stops early at `confidence`)
+  double confidence = 0.999;
+  double similarity = 0.9;  // pre-rejection: edge-length ratio of sample and match triangles, in [0, 1)
+  // Before downsampling (on a voxel grid a third of voxel_mm), points whose mean distance to their
+  // outlier_neighbours nearest is more than outlier_sigmas standard deviations above the mean are dropped (stray
+  // returns); 0 neighbours: none dropped.
   int outlier_neighbours = 16;
   double outlier_sigmas = 2.0;
-  // Match filters on the scan points RANSAC draws from: mutual nearest features, and the ratio test (nearest over
-  // second-nearest feature distance below `ratio`; 0: none). Ignored when fewer than min_matched_points pass.
-  bool mutual = false;
+  // Match filters on the correspondences RANSAC draws from (each downsampled scan point and the reference point of
+  // the nearest feature): mutual nearest features, and the ratio test (nearest over second-nearest feature distance
+  // below `ratio`; 0: none). Ignored when fewer than min_matched_points pass.
+  bool mutual = true;
   double ratio = 0.0;
   std::size_t min_matched_points = 50;
   std::uint64_t seed = 1;
-  // RANSAC runs over the same descriptors, seeded seed, seed + 1, ...: each run's answer is a hypothesis of its own
-  // (hypotheses), so that one unlucky run (a mirror pose on a near-symmetric part) meets competition.
-  int runs = 4;
+  // The best this many distinct RANSAC poses are hypotheses (more than 1 degree or 5 inlier distances apart): their
+  // short ICPs (multi_start.h) pick the one that fits, and a mirror pose on a near-symmetric part meets competition.
+  int hypotheses = 6;
 
   bool IsValid(std::string* error) const;
 };
 
 struct FpfhHypothesis {
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-  bool found = false;
-  double inlier_fraction = 0.0;
-  std::uint64_t seed = 0;
+  bool found = false;            // reached min_inlier_fraction
+  double inlier_fraction = 0.0;  // of the downsampled scan points, within inlier_distance of a reference point
 };
 
 struct FpfhResult {
-  std::vector<FpfhHypothesis> hypotheses;  // one per run, in seed order; the fields below are the best found one's
+  std::vector<FpfhHypothesis> hypotheses;  // best first; the fields below are the best's
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
   bool found = false;            // a hypothesis reached min_inlier_fraction
-  double inlier_fraction = 0.0;  // of the RANSAC scan points, within inlier_distance
+  double inlier_fraction = 0.0;  // of the downsampled scan points, within inlier_distance
   double voxel_mm = 0.0;         // used
   std::size_t scan_points = 0;   // after downsampling
-  std::size_t matched_points = 0;  // RANSAC drew from (after the match filters and ransac_points)
+  std::size_t matched_points = 0;  // correspondences RANSAC drew from (after the match filters)
   std::size_t reference_points = 0;
+  int iterations = 0;         // RANSAC samples drawn
+  double match_share = 0.0;   // of the correspondences, consistent with the best pose
 };
 
 // Throws conform::Error for invalid options or fewer than 10 points on either side after downsampling.
