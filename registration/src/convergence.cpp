@@ -23,8 +23,7 @@ Vector6d scaled_twist(const Eigen::Isometry3d& delta, const Eigen::Vector3d& cen
 bool ConvergenceTest::converged(const Eigen::Isometry3d& delta, const PlaneNormalMatrix& plane, double noise_mm) {
   const Eigen::Vector3d& c = plane.centre;
   const double rotation = Eigen::AngleAxisd(delta.linear()).angle();
-  const bool below_floor =
-      rotation <= rotation_tolerance_rad_ && (delta * c - c).norm() <= translation_tolerance_mm_;
+  const bool below_floor = rotation <= rotation_tolerance_rad_ && (delta * c - c).norm() <= translation_tolerance_mm_;
   const Eigen::Isometry3d previous = previous_;
   const bool had_previous = has_previous_;
   previous_ = delta;

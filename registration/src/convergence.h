@@ -31,7 +31,8 @@ class ConvergenceTest {
  public:
   // fraction: f of (2); tolerances: the absolute floor (rad, mm), both as given times any stage scale.
   ConvergenceTest(double fraction, double rotation_tolerance_rad, double translation_tolerance_mm)
-      : fraction_(fraction), rotation_tolerance_rad_(rotation_tolerance_rad),
+      : fraction_(fraction),
+        rotation_tolerance_rad_(rotation_tolerance_rad),
         translation_tolerance_mm_(translation_tolerance_mm) {}
 
   // The step `delta` (applied on the left of the pose) taken from pairs whose normal matrix is `plane` and noise

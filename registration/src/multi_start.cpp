@@ -150,7 +150,8 @@ bool same_up_to_free(const Eigen::Isometry3d& T_a, const Eigen::Isometry3d& T_b,
   if (rotations.empty()) {
     const Eigen::Isometry3d between = T_b * T_a.inverse();
     const Eigen::Vector3d moved = T_b * scan_centre - T_a * scan_centre;
-    return rotation_angle(between) <= max_rad && without_free(moved, translations, Eigen::Matrix3d::Identity()).norm() <= max_mm;
+    return rotation_angle(between) <= max_rad &&
+           without_free(moved, translations, Eigen::Matrix3d::Identity()).norm() <= max_mm;
   }
   const Eigen::Vector3d& k = rotations.front()->direction;
   const Eigen::Vector3d& point = rotations.front()->point;

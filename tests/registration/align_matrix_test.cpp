@@ -92,7 +92,10 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
     const auto [deg, mm] = pose_errors(t, r.icp.T_ref_scan);
     std::string held;
     for (const ConstraintDirection& d : r.icp.degeneracy.eigen_directions) {
-      if (d.held) held += " " + std::to_string(d.std_mm).substr(0, 6) + "mm/" + std::to_string(d.std_rad * 180.0 / M_PI).substr(0, 6) + "deg(" + std::to_string(d.relative_eigenvalue).substr(0, 8) + ")";
+      if (!d.held) continue;
+      held += " " + std::to_string(d.std_mm).substr(0, 6) + "mm/" +
+              std::to_string(d.std_rad * 180.0 / M_PI).substr(0, 6) + "deg(" +
+              std::to_string(d.relative_eigenvalue).substr(0, 8) + ")";
     }
     const auto [start_deg, start_mm] = pose_errors(t, r.T_start);
     for (const StartReport& o : r.coarse.ranking.starts) {

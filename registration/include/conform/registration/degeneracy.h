@@ -106,8 +106,9 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 // when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than max(tolerance_mm,
 // start_std_mm) along, or max(tolerance_rad, start_std_rad) about, some axis (loose, and the start known better than
 // the data would give it), and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
-// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of that and the sandwich estimate
-// u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is V diag(variances) V^T.
+// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of
+// that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is
+// V diag(variances) V^T. start_std 0 (the default here): the start is exact, every loose direction is held.
 // Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
 // second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
 // over the N points the std assumes independent.
