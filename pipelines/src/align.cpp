@@ -207,7 +207,11 @@ AlignResult run_align(const AlignOptions& options) {
   result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
                                                          : kAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, options, result.max_distance_mm, result);
-  result.icp = icp(scan, reference, result.T_start, fine_options(options, result.method, result.max_distance_mm));
+  IcpOptions fine = fine_options(options, result.method, result.max_distance_mm);
+  // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's
+  // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
+  if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;
+  result.icp = icp(scan, reference, result.T_start, fine);
   result.verdict = detail::judge_alignment(scan, reference_mesh, options, result);
   if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
   if (options.keep_geometry) {

@@ -78,6 +78,7 @@ nlohmann::json starts_json(const AlignResult& r) {
                       {"best_only_share", s.best_only_share},
                       {"only_share", s.only_share},
                       {"separated", s.separated},
+                      {"same_up_to_free", s.same_up_to_free},
                       {"T_ref_scan", pose}});
   }
   return starts;

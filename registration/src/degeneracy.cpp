@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include "plane_matrix.h"
@@ -107,6 +108,26 @@ DegeneracyReport start_report(const PlaneNormalMatrix& matrix) {
 
 }  // namespace
 
+std::vector<DegenerateDirection> motions_of(const std::vector<Vector6d>& basis, const DegeneracyReport& report,
+                                            const Matrix6d& H) {
+  DegeneracyReport out = start_report(PlaneNormalMatrix{});
+  out.centre = report.centre;
+  out.length_scale_mm = report.length_scale_mm;
+  if (basis.empty() || !(report.length_scale_mm > 0.0)) return {};
+  Eigen::MatrixXd D(6, static_cast<Eigen::Index>(basis.size()));
+  for (std::size_t k = 0; k < basis.size(); ++k) D.col(static_cast<Eigen::Index>(k)) = basis[k].normalized();
+  // Orthonormal columns spanning the same subspace, as split_motions expects.
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(D);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(6, D.cols());
+  Vector6d scale;
+  const double L = report.length_scale_mm;
+  scale << L, L, L, 1.0, 1.0, 1.0;
+  const Matrix6d scaled_covariance = scale.asDiagonal() * report.covariance * scale.asDiagonal();
+  const double largest = report.eigenvalues.size() > 0 ? report.eigenvalues(report.eigenvalues.size() - 1) : 0.0;
+  split_motions(Q, H, largest, scaled_covariance, out);
+  return out.directions;
+}
+
 double DegeneracyReport::relative_smallest() const {
   if (eigenvalues.size() == 0 || !(eigenvalues(eigenvalues.size() - 1) > 0.0)) return 0.0;
   return eigenvalues(0) / eigenvalues(eigenvalues.size() - 1);
@@ -136,7 +157,8 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 }
 
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
-                                    double tolerance_rad, const FreeDof& free_dof, double min_relative) {
+                                    double tolerance_rad, const FreeDof& free_dof, double min_relative,
+                                    double start_std_mm, double start_std_rad) {
   DegeneracyReport report = start_report(matrix);
   report.noise_mm = noise_mm;
   report.tolerance_mm = tolerance_mm;
@@ -171,8 +193,9 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
     const double gaussian_std = std::sqrt(gaussian);
     // A direction measured within a factor of ten of the best (in std) is never held: holding it cannot beat the
     // data, however noisy (a LiDAR scene's residuals are centimetres).
-    const bool loose =
-        gaussian_std * d.rotation.norm() > tolerance_rad || gaussian_std * d.translation.norm() > tolerance_mm;
+    // Held only where the data cannot do better than the start: loose beyond the tolerance and the start's std.
+    const bool loose = gaussian_std * d.rotation.norm() > std::max(tolerance_rad, start_std_rad) ||
+                       gaussian_std * d.translation.norm() > std::max(tolerance_mm, start_std_mm);
     d.held = !(largest > 0.0) || d.relative_eigenvalue < min_relative ||
              (loose && d.relative_eigenvalue < kMeasuredRelative);
     if (d.held) degenerate.push_back(i);

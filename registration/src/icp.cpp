@@ -7,6 +7,7 @@
 
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
+#include "convergence.h"
 #include "gicp.h"
 #include "icp_step.h"
 #include "pairs.h"
@@ -21,8 +22,9 @@ using detail::Pair;
 // The subset stage of multi-resolution ICP stops at 100 times the tolerances: its optimum differs from the full
 // set's by about that, and the full set takes the last steps.
 constexpr double kCoarseToleranceScale = 100.0;
-// Steps that return to the pose of two steps before count as converged when smaller than this many tolerances.
-constexpr double kCycleStepScale = 100.0;
+// ... and at this many times the convergence fraction of its own predicted std (convergence.h): the subset's
+// optimum is about one of its std from the full set's.
+constexpr double kCoarseStdScale = 4.0;
 // Plane-to-plane: the scan's normals from this many neighbours, as the reference cloud's (icp_reference.cpp).
 constexpr int kScanNormalNeighbours = 16;
 
@@ -66,7 +68,8 @@ StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, 
                    ? f.kernel_scale_mm
                    : detail::noise_scale(pairs, f.inliers, options.min_kernel_scale_mm, along_normal);
   f.degeneracy = analyze_constraint(f.plane, hold_noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
-                                    options.free_dof, options.free_relative_eigenvalue);
+                                    options.free_dof, options.free_relative_eigenvalue, options.start_std_mm,
+                                    options.start_std_rad);
   return f;
 }
 
@@ -78,7 +81,8 @@ void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t sc
   result.inlier_fraction = static_cast<double>(f.inliers.size()) / static_cast<double>(scan_size);
   result.kernel_scale_mm = f.kernel_scale_mm;
   result.degeneracy = analyze_constraint(f.plane, f.noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
-                                         options.free_dof, options.free_relative_eigenvalue);
+                                         options.free_dof, options.free_relative_eigenvalue, options.start_std_mm,
+                                         options.start_std_rad);
   pass.held = f.degeneracy.degenerate_basis.size();
 }
 
@@ -101,14 +105,12 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
              const IcpReference& reference, const IcpOptions& options, const detail::PairRules& rules,
              double tolerance_scale, int max_iterations, std::vector<Pair>& pairs, Pass& pass, IcpResult& result) {
   const bool point_to_point = options.method == IcpMethod::kPointToPoint;
-  const auto within = [&](double rotation_rad, double translation_mm, double scale) {
-    return rotation_rad <= scale * tolerance_scale * options.rotation_tolerance_rad &&
-           translation_mm <= scale * tolerance_scale * options.translation_tolerance_mm;
-  };
+  detail::ConvergenceTest convergence(
+      options.convergence_std_fraction * (tolerance_scale > 1.0 ? kCoarseStdScale : 1.0),
+      tolerance_scale * options.rotation_tolerance_rad, tolerance_scale * options.translation_tolerance_mm);
   detail::PairCache cache;  // the last step's searches, reused where exact: late steps search almost nothing
   cache.reset(points.size(), options.method == IcpMethod::kPointToSurface);
-  Eigen::Isometry3d one_back = result.T_ref_scan, two_back = result.T_ref_scan;
-  for (int steps = 0; result.iterations < max_iterations; ++steps) {
+  while (result.iterations < max_iterations) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
     detail::find_pairs(points, normals, result.T_ref_scan, reference, rules, pairs, &cache);
     const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
@@ -132,14 +134,9 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
     ++result.iterations;
     result.last_rotation_rad = rotation_angle(delta);
     result.last_translation_mm = (delta * centre - centre).norm();
-    // A step back to where the step before started: the pairs alternate between two sets, and the optimum lies
-    // between two poses closer than the steps (seen with plane-to-plane on a LiDAR scene: steps of 9e-4 mm, forever).
-    const Eigen::Isometry3d cycle = result.T_ref_scan * two_back.inverse();
-    const bool alternating = steps >= 1 && within(rotation_angle(cycle), (cycle * centre - centre).norm(), 1.0) &&
-                             within(result.last_rotation_rad, result.last_translation_mm, kCycleStepScale);
-    two_back = one_back;
-    one_back = result.T_ref_scan;
-    if (within(result.last_rotation_rad, result.last_translation_mm, 1.0) || alternating) {
+    const bool converged = convergence.converged(delta, f.plane, f.noise_mm);  // convergence.h, Eq. (2)
+    result.last_step_std = convergence.last_std_fraction();
+    if (converged) {
       result.converged = true;
       result.termination = IcpTermination::kConverged;
       return;

@@ -60,6 +60,10 @@ bool IcpOptions::IsValid(std::string* error) const {
   if (!(min_kernel_scale_mm > 0.0) || !std::isfinite(min_kernel_scale_mm)) {
     return fail("min_kernel_scale_mm must be finite and > 0");
   }
+  if (!(start_std_mm >= 0.0) || !(start_std_rad >= 0.0)) return fail("start_std_mm and start_std_rad must be >= 0");
+  if (!(convergence_std_fraction >= 0.0) || !std::isfinite(convergence_std_fraction)) {
+    return fail("convergence_std_fraction must be finite and >= 0");
+  }
   if (!(rotation_tolerance_rad >= 0.0) || !std::isfinite(rotation_tolerance_rad)) {
     return fail("rotation_tolerance_rad must be finite and >= 0");
   }

@@ -101,6 +101,109 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
   return out;
 }
 
+// The finite screw motion of a scaled twist x = (w L, v) about c: rotation |w| about the axis through
+// c + w x v / |w|^2 along w, with translation (w . v / |w|^2) |w| along it; a translation v when w = 0. (The
+// linearised step of icp_step.h turns about c instead: wrong by (angle^2 / 2) x the axis' distance for a large turn.)
+Eigen::Isometry3d screw_motion(const Vector6d& x, const Eigen::Vector3d& c, double length_scale_mm) {
+  const Eigen::Vector3d w = x.head<3>() / length_scale_mm, v = x.tail<3>();
+  Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
+  const double angle = w.norm();
+  if (!(angle > 1e-12)) {
+    m.translation() = v;
+    return m;
+  }
+  const Eigen::Vector3d k = w / angle;
+  const Eigen::Vector3d a = c + w.cross(v) / (angle * angle);
+  m.linear() = Eigen::AngleAxisd(angle, k).toRotationMatrix();
+  m.translation() = a - m.linear() * a + (k.dot(v) / angle) * angle * k;
+  return m;
+}
+
+// The components of d along the (reference-frame) free translations, seen through `R_scan_ref`, taken out.
+Eigen::Vector3d without_free(Eigen::Vector3d d, const std::vector<Eigen::Vector3d>& translations,
+                             const Eigen::Matrix3d& R_scan_ref) {
+  for (const Eigen::Vector3d& t : translations) {
+    const Eigen::Vector3d u = R_scan_ref * t;
+    d -= d.dot(u) * u;
+  }
+  return d;
+}
+
+}  // namespace
+
+bool same_up_to_free(const Eigen::Isometry3d& T_a, const Eigen::Isometry3d& T_b,
+                     const std::vector<DegenerateDirection>& free_motions, const Eigen::Vector3d& scan_centre,
+                     double max_rad, double max_mm) {
+  std::vector<Eigen::Vector3d> translations;
+  std::vector<const DegenerateDirection*> rotations;
+  for (const DegenerateDirection& d : free_motions) {
+    if (d.kind == MotionKind::kRotation) {
+      rotations.push_back(&d);
+      continue;
+    }
+    Eigen::Vector3d t = d.direction;  // Gram-Schmidt, so that taking them out one by one is a projection
+    for (const Eigen::Vector3d& u : translations) t -= t.dot(u) * u;
+    if (t.norm() > 1e-6) translations.push_back(t.normalized());
+  }
+  const Eigen::Matrix3d R_a = T_a.linear().transpose();  // scan <- reference
+  const Eigen::Isometry3d A = T_a.inverse(), B = T_b.inverse();
+  if (rotations.empty()) {
+    const Eigen::Isometry3d between = T_b * T_a.inverse();
+    const Eigen::Vector3d moved = T_b * scan_centre - T_a * scan_centre;
+    return rotation_angle(between) <= max_rad &&
+           without_free(moved, translations, Eigen::Matrix3d::Identity()).norm() <= max_mm;
+  }
+  const Eigen::Vector3d& k = rotations.front()->direction;
+  const Eigen::Vector3d& point = rotations.front()->point;
+  if (rotations.size() > 1) {
+    return without_free(A * point - B * point, translations, R_a).norm() <= max_mm;
+  }
+  const Eigen::Vector3d d_a = A.linear() * k, d_b = B.linear() * k;
+  if (std::acos(std::min(1.0, std::abs(d_a.dot(d_b)))) > max_rad) return false;
+  const Eigen::Vector3d p_a = A * point, p_b = B * point;
+  const Eigen::Vector3d q_a = p_a + (scan_centre - p_a).dot(d_a) * d_a;
+  const Eigen::Vector3d q_b = p_b + (scan_centre - p_b).dot(d_b) * d_b;
+  Eigen::Vector3d gap = without_free(q_a - q_b, translations, R_a);
+  gap -= gap.dot(d_a) * d_a;
+  return gap.norm() <= max_mm;
+}
+
+namespace {
+
+// The best's loose (or held) directions along which a step of step_mm (at the probe points' RMS radius) both ways
+// keeps the fit: not told apart from the unmoved pose by the inlier test. Their motions, reference frame.
+std::vector<DegenerateDirection> symmetric_motions(const std::vector<Eigen::Vector3d>& subset,
+                                                   const IcpReference& reference, const Eigen::Isometry3d& T_best,
+                                                   const DegeneracyReport& degeneracy, const std::vector<char>& mask,
+                                                   double step_mm, double reach, const MultiStartOptions& o) {
+  const double L = degeneracy.length_scale_mm;
+  std::vector<Vector6d> free;
+  if (!(L > 0.0)) return {};
+  for (const ConstraintDirection& d : degeneracy.eigen_directions) {
+    const bool loose = d.held || d.std_mm > o.probe.free_tolerance_mm || d.std_rad > o.probe.free_tolerance_rad;
+    if (!loose) continue;
+    Vector6d u;
+    u.head<3>() = d.rotation * L;
+    u.tail<3>() = d.translation;
+    const double reach_per_unit = u.head<3>().norm() + u.tail<3>().norm();  // displacement at the RMS radius
+    if (!(reach_per_unit > 0.0)) continue;
+    bool keeps = true;
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Isometry3d moved = screw_motion(sign * step_mm / reach_per_unit * u, degeneracy.centre, L);
+      const std::vector<char> m = inliers(subset, moved * T_best, reference, o.inlier_distance_mm, reach);
+      std::size_t best_only = 0, moved_only = 0;
+      for (std::size_t i = 0; i < subset.size(); ++i) {
+        best_only += mask[i] && !m[i];
+        moved_only += m[i] && !mask[i];
+      }
+      keeps = keeps && !separated(best_only, moved_only, subset.size(), o);
+    }
+    if (keeps) free.push_back(u);
+  }
+  std::vector<DegenerateDirection> motions = motions_of(free, degeneracy, Matrix6d::Zero());
+  return motions;
+}
+
 }  // namespace
 
 bool MultiStartOptions::IsValid(std::string* error) const {
@@ -120,6 +223,8 @@ bool MultiStartOptions::IsValid(std::string* error) const {
   } else if (!(separation_z >= 0.0) || !std::isfinite(separation_z) || !(separation_ratio >= 1.0) ||
              !std::isfinite(separation_ratio) || !(separation_min_share >= 0.0 && separation_min_share <= 1.0)) {
     why = "separation_z must be finite and >= 0, separation_ratio finite and >= 1, separation_min_share in [0, 1]";
+  } else if (!(free_step_share >= 0.0) || !std::isfinite(free_step_share)) {
+    why = "free_step_share must be finite and >= 0";
   } else if (!(symmetry_similarity >= 0.0 && symmetry_similarity < 1.0)) {
     why = "symmetry_similarity must be in [0, 1)";
   } else if (!(distinct_deg > 0.0) || !std::isfinite(distinct_deg) || !(distinct_mm >= 0.0) ||
@@ -143,6 +248,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       by_share ? 3.0 * median_spacing(reference.points(), reference.tree()) + options.inlier_distance_mm : 0.0;
   MultiStartResult result;
   std::vector<std::vector<char>> masks;
+  std::vector<DegeneracyReport> constraints;  // each probe's, for the best's free motions
   const auto probe_start = [&](const CoarseStart& start) {
     IcpOptions probe = options.probe;
     probe.progress = nullptr;
@@ -154,6 +260,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     report.score_mm = truncated_rms(subset, r.T_ref_scan, reference, cap);
     report.inlier_fraction = r.inlier_fraction;
     report.rms_mm = r.rms_mm;
+    constraints.push_back(r.degeneracy);
     if (by_share) {
       masks.push_back(inliers(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
       report.inlier_share = share_of(masks.back());
@@ -182,6 +289,12 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
                         : options.distinct_mm > 0.0 ? options.distinct_mm
                                                     : std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
   const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;
+  if (by_share && options.free_step_share > 0.0) {
+    const auto b = static_cast<std::size_t>(result.best);
+    const double step_mm = std::max(options.free_step_share * size_mm, 3.0 * options.inlier_distance_mm);
+    result.free_motions =
+        symmetric_motions(subset, reference, best.T_probe, constraints[b], masks[b], step_mm, reach, options);
+  }
   for (std::size_t j = 0; j < result.starts.size(); ++j) {
     StartReport& other = result.starts[j];
     if (static_cast<int>(j) == result.best) continue;
@@ -192,6 +305,11 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     const bool elsewhere =
         rotation_angle(between) > far_rad || (other.T_probe * centre - best.T_probe * centre).norm() > far_mm;
     if (!elsewhere) continue;
+    if (!result.free_motions.empty() &&
+        same_up_to_free(best.T_probe, other.T_probe, result.free_motions, centre, far_rad, far_mm)) {
+      other.same_up_to_free = true;
+      continue;
+    }
     if (by_share) {
       const std::vector<char>& b = masks[static_cast<std::size_t>(result.best)];
       std::size_t best_only = 0, other_only = 0;

@@ -12,7 +12,9 @@
 //   - the ribbed plate (datasets/ribbed_plate.h): sampling that leaves translation along the ribs weakly fixed;
 //   - a cylinder patch (full symmetry: its axis shift and turn are free and must be reported, or refused);
 //   - the boss plate (near-symmetry: must not pick the mirror pose with exit 0).
-// Small clouds (a few thousand points): enough to exercise the logic, ~2 s a case in a release build.
+// Small clouds (a few thousand points): enough to exercise the logic, 3-5 s CPU a case in a release build (the
+// cylinder on 3000 / 1500 points and the boss plate on 2.0 / 1.6 mm grids: the same verdicts as on 6000 / 2500 and
+// 1.5 / 1.2 mm, at 3.4 s instead of ~6 s and 3.7 s instead of 4.5 s).
 
 #include <gtest/gtest.h>
 
@@ -99,7 +101,10 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
     const auto [deg, mm] = pose_errors(t, r.icp.T_ref_scan);
     std::string held;
     for (const ConstraintDirection& d : r.icp.degeneracy.eigen_directions) {
-      if (d.held) held += " " + std::to_string(d.std_mm).substr(0, 6) + "mm";
+      if (!d.held) continue;
+      held += " " + std::to_string(d.std_mm).substr(0, 6) + "mm/" +
+              std::to_string(d.std_rad * 180.0 / M_PI).substr(0, 6) + "deg(" +
+              std::to_string(d.relative_eigenvalue).substr(0, 8) + ")";
     }
     const auto [start_deg, start_mm] = pose_errors(t, r.T_start);
     for (const StartReport& o : r.coarse.ranking.starts) {
@@ -147,12 +152,22 @@ Trial workpiece_trial(int seed, const Eigen::Isometry3d& T_ref_part, double nois
   return t;
 }
 
+// The accuracy asked of a 0.2 mm-noise profiler scan of the workpiece (--free-tolerance-mm/-deg): a pose a coarse
+// search found is trusted only when the fine fit fixes every motion this well (align_verdict.cpp). Predicted std
+// measured: right poses accepted <= 0.13 mm and 0.23 deg; the wrong ones (a neighbouring minimum 1-2.6 mm off near
+// sparse walls, noise and outliers) >= 0.156 mm or 0.27 deg.
+void profiler_tolerance(AlignOptions& options) {
+  options.free_tolerance_mm = 0.14;
+  options.free_tolerance_deg = 0.25;
+}
+
 TEST(AlignMatrixWorkpiece, PartialScans) {
   const Tally t = run_matrix(
       "workpiece", [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.2, 0.0); },
-      within(1.0, 1.0));
+      within(1.0, 1.0), profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10
+  EXPECT_GE(t.right, 7);        // measured 8 (before the convergence and hold rules of issue 13: 0-3)
 }
 
 // The golden sample in shop coordinates: 100 m from the origin, turned; the scan in the scanner's frame.
@@ -161,15 +176,18 @@ TEST(AlignMatrixWorkpiece, ShopFrameCoordinates) {
   T_shop_part.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.1, 0.2, 1.0).normalized()).toRotationMatrix();
   T_shop_part.translation() = Eigen::Vector3d(96000.0, -25000.0, 1200.0);
   const Tally t = run_matrix(
-      "shop frame", [&](int seed) { return workpiece_trial(seed, T_shop_part, 0.2, 0.0); }, within(1.0, 1.0));
+      "shop frame", [&](int seed) { return workpiece_trial(seed, T_shop_part, 0.2, 0.0); }, within(1.0, 1.0),
+      profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10
+  EXPECT_GE(t.right, 7);        // measured 9 (before: 0-1)
 }
 
 TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
   const Tally t = run_matrix(
       "noise and outliers",
-      [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); }, within(1.0, 1.0));
+      [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); }, within(1.0, 1.0),
+      profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 6);  // measured 6 (main's PCL RANSAC: 8; 1 without the outlier removal before FPFH)
 }
@@ -186,7 +204,7 @@ TEST(AlignMatrixWorkpiece, SparseWalls) {
     t.reference = workpiece_samples(sparse);
     return t;
   };
-  const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0));
+  const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0), profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 4);  // measured 5 (main's PCL RANSAC: 6)
 }
@@ -209,9 +227,9 @@ TEST(AlignMatrixSymmetry, CylinderIsFreeOrRefused) {
   const auto make = [](int seed) {
     Random random(static_cast<std::uint64_t>(400 + seed));
     Trial t;
-    t.reference = cylinder_points(40.0, 150.0, 2.0 * M_PI, 6000, 0.05, random);
+    t.reference = cylinder_points(40.0, 150.0, 2.0 * M_PI, 3000, 0.05, random);
     const Eigen::Isometry3d T_ref_scan = test::random_motion(random, M_PI, 200.0, Eigen::Vector3d::Zero());
-    t.scan = test::transformed_points(cylinder_points(40.0, 100.0, 150.0 * test::kDeg, 2500, 0.05, random),
+    t.scan = test::transformed_points(cylinder_points(40.0, 100.0, 150.0 * test::kDeg, 1500, 0.05, random),
                                       T_ref_scan.inverse());
     t.truth = T_ref_scan;
     return t;
@@ -225,10 +243,13 @@ TEST(AlignMatrixSymmetry, CylinderIsFreeOrRefused) {
     }
     const double axis = std::abs((r.icp.T_ref_scan.linear() * t.truth.linear().transpose() * Eigen::Vector3d::UnitZ()).z());
     return std::sqrt(sum / static_cast<double>(t.scan.size())) < 0.15 && axis > std::cos(0.5 * test::kDeg) &&
-           r.icp.degeneracy.directions.size() >= 2;
+           r.icp.degeneracy.directions.size() >= 2 && r.verdict.trust != AlignTrust::kYes;
   };
   const Tally t = run_matrix("cylinder", make, on_cylinder);
   EXPECT_EQ(t.wrong_accepted, 0);
+  // Its coarse candidates differ along the free motions only: the same answer, reported with those motions free,
+  // verdict "check" (before issue 13's rule: ambiguous, refused 10/10).
+  EXPECT_GE(t.right, 7);  // measured 10 (9 on 6000 / 2500 points)
 }
 
 // Near-symmetry: the boss plate (boss_plate.h) turned 180 degrees fits all but the boss. The mirror pose must not
@@ -237,9 +258,9 @@ TEST(AlignMatrixSymmetry, BossPlateNeverTheMirror) {
   const auto make = [](int seed) {
     Random random(static_cast<std::uint64_t>(100 + seed));
     Trial t;
-    t.reference = test::boss_plate(1.5, 0.0);
+    t.reference = test::boss_plate(2.0, 0.0);
     t.truth = test::random_motion(random, M_PI, 50.0, Eigen::Vector3d::Zero());
-    std::vector<Eigen::Vector3d> scan = test::boss_plate(1.2, 0.4);
+    std::vector<Eigen::Vector3d> scan = test::boss_plate(1.6, 0.5);
     for (Eigen::Vector3d& p : scan) p += 0.02 * Eigen::Vector3d(random.normal(), random.normal(), random.normal());
     t.scan = test::transformed_points(scan, t.truth.inverse());
     return t;

@@ -246,5 +246,50 @@ TEST(Downsample, VoxelCentroidsAndStride) {
   EXPECT_EQ(stride_downsample(points, 10).size(), 4u);
 }
 
+// A cylinder's free motions (turn about its axis z through the origin, shift along it): poses that differ by them,
+// or by the turn end for end that maps the (unoriented) axis onto itself, are the same answer; a shift off the axis
+// or a tilt of it is not.
+TEST(MultiStart, SameUpToFreeMotionsComparesWhatIsConstrained) {
+  DegenerateDirection shift, turn;
+  shift.kind = MotionKind::kTranslation;
+  shift.direction = Eigen::Vector3d::UnitZ();
+  turn.kind = MotionKind::kRotation;
+  turn.direction = Eigen::Vector3d::UnitZ();
+  turn.point = Eigen::Vector3d(0.0, 0.0, 5.0);
+  const std::vector<DegenerateDirection> free = {shift, turn};
+  Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
+  A.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  A.translation() = Eigen::Vector3d(4.0, -2.0, 7.0);
+  const Eigen::Vector3d centre_scan = A.inverse() * Eigen::Vector3d(38.0, 0.0, 10.0);  // on the cylinder r 38
+  const auto about = [](double angle, const Eigen::Vector3d& axis, const Eigen::Vector3d& shift_mm) {
+    Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
+    M.linear() = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+    M.translation() = shift_mm;
+    return M;
+  };
+  const double deg = M_PI / 180.0;
+  // Turned 70 degrees about the axis and shifted 12 mm along it: the same.
+  EXPECT_TRUE(same_up_to_free(A, about(70 * deg, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0, 0, 12)) * A, free,
+                              centre_scan, 3 * deg, 1.0));
+  // Turned end for end (180 degrees about x through the origin): the axis line is the same line.
+  EXPECT_TRUE(same_up_to_free(A, about(M_PI, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero()) * A, free,
+                              centre_scan, 3 * deg, 1.0));
+  // Shifted 2 mm off the axis, or the axis tilted 5 degrees: constrained motions differ.
+  EXPECT_FALSE(same_up_to_free(A, about(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(2, 0, 0)) * A, free,
+                               centre_scan, 3 * deg, 1.0));
+  EXPECT_FALSE(same_up_to_free(A, about(5 * deg, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero()) * A, free,
+                               centre_scan, 3 * deg, 1.0));
+  // Only the shift free (an extrusion): a turn is no longer free, the shift along z still is.
+  EXPECT_FALSE(same_up_to_free(A, about(70 * deg, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()) * A, {shift},
+                               centre_scan, 3 * deg, 1.0));
+  EXPECT_TRUE(same_up_to_free(A, about(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0, 0, 30)) * A, {shift},
+                              centre_scan, 3 * deg, 1.0));
+  // Nothing free: within the bounds only.
+  EXPECT_TRUE(same_up_to_free(A, about(1 * deg, Eigen::Vector3d::UnitY(), Eigen::Vector3d::Zero()) * A, {},
+                              centre_scan, 3 * deg, 2.0));
+  EXPECT_FALSE(same_up_to_free(A, about(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0, 0, 3)) * A, {},
+                               centre_scan, 3 * deg, 2.0));
+}
+
 }  // namespace
 }  // namespace conform

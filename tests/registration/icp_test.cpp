@@ -9,6 +9,7 @@
 
 #include "conform/core/error.h"
 #include "conform/datasets/parts.h"
+#include "convergence.h"
 #include "registration_test_util.h"
 
 namespace conform {
@@ -196,6 +197,88 @@ TEST(Icp, BadInputThrows) {
   options = IcpOptions{};
   options.method = IcpMethod::kPointToSurface;
   EXPECT_THROW(icp({{0.0, 0.0, 0.0}}, no_faces, Eigen::Isometry3d::Identity(), options), Error);
+}
+
+// Eq. (1) of convergence.h on a normal matrix H = I (N = 100 pairs, sigma = 1 mm, L = 1 mm): a step moving by t mm
+// along x has m = sqrt(N) t / sigma = 10 t.
+detail::ConvergenceTest convergence_on_unit_matrix(PlaneNormalMatrix& plane) {
+  plane.H = Matrix6d::Identity();
+  plane.count = 100;
+  plane.length_scale_mm = 1.0;
+  return detail::ConvergenceTest(0.25, 1e-9, 1e-9);
+}
+
+Eigen::Isometry3d shift_x(double mm) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(mm, 0.0, 0.0);
+  return T;
+}
+
+TEST(IcpConvergence, AStepIsConvergedBelowAFractionOfThePredictedStd) {
+  PlaneNormalMatrix plane;
+  detail::ConvergenceTest small = convergence_on_unit_matrix(plane);
+  EXPECT_TRUE(small.converged(shift_x(0.02), plane, 1.0));  // m = 0.2 <= 0.25
+  EXPECT_NEAR(small.last_std_fraction(), 0.2, 1e-12);
+  detail::ConvergenceTest large = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(large.converged(shift_x(0.03), plane, 1.0));  // m = 0.3
+  // The same step against four times the noise is a quarter as long in std: converged.
+  detail::ConvergenceTest noisy = convergence_on_unit_matrix(plane);
+  EXPECT_TRUE(noisy.converged(shift_x(0.03), plane, 4.0));
+  // Repeated the same way it is a motion under way (rho = 1): not converged.
+  EXPECT_FALSE(noisy.converged(shift_x(0.03), plane, 4.0));
+}
+
+TEST(IcpConvergence, SteadyCreepIsNotConvergedAndACycleIs) {
+  PlaneNormalMatrix plane;
+  detail::ConvergenceTest creep = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(creep.converged(shift_x(0.03), plane, 1.0));
+  // 0.019 after 0.020 the same way: rho 0.95, 0.19 x 0.95 / 0.05 = 3.6 std still to come.
+  EXPECT_FALSE(creep.converged(shift_x(0.020), plane, 1.0));
+  EXPECT_FALSE(creep.converged(shift_x(0.019), plane, 1.0));
+  // Halving steps: 0.02 then 0.01: 0.1 + 0.1 x 0.5 / 0.5 = 0.2 <= 0.25.
+  detail::ConvergenceTest halving = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(halving.converged(shift_x(0.05), plane, 1.0));
+  EXPECT_TRUE(halving.converged(shift_x(0.025), plane, 1.0) ||
+              halving.converged(shift_x(0.0125), plane, 1.0));
+  // Back and forth by 0.02 (pairs flipping): each step 0.2 std, no motion under way: converged.
+  detail::ConvergenceTest cycle = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(cycle.converged(shift_x(0.04), plane, 1.0));
+  EXPECT_TRUE(cycle.converged(shift_x(-0.02), plane, 1.0));
+}
+
+TEST(IcpConvergence, TheTolerancesAreTheFloorOfANoiseFreeFit) {
+  PlaneNormalMatrix plane;
+  plane.H = Matrix6d::Identity();
+  plane.count = 100;
+  plane.length_scale_mm = 1.0;
+  detail::ConvergenceTest floor(0.0, 1e-6, 1e-4);  // no std rule: only the tolerances
+  EXPECT_TRUE(floor.converged(shift_x(5e-5), plane, 1e-3));
+  EXPECT_FALSE(floor.converged(shift_x(2e-4), plane, 1e-3));
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.linear() = Eigen::AngleAxisd(2e-6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_FALSE(floor.converged(turn, plane, 1e-3));
+}
+
+// A noisy pair (0.1 mm noise, where the old 1e-4 mm step rule ran out of iterations on profiler data) converges, and
+// the pose lands within 4 of its own predicted std.
+TEST(IcpConvergence, ANoisyFitConvergesWithinItsPredictedStd) {
+  const Mesh reference = part(true, 4.0);
+  Random random(7);
+  std::vector<Eigen::Vector3d> scan = part(true, 3.0, 0.1, 7).vertices;
+  const Eigen::Isometry3d truth = test::random_motion(random, 1.0 * kDeg, 1.0, test::mean_point(scan));
+  scan = test::transformed_points(scan, truth.inverse());
+  const IcpReference ref(reference);
+  IcpOptions options;
+  options.max_correspondence_distance_mm = 10.0;
+  options.method = IcpMethod::kPointToSurface;
+  const IcpResult r = icp(scan, ref, Eigen::Isometry3d::Identity(), options);
+  ASSERT_TRUE(r.converged) << to_string(r.termination);
+  EXPECT_LE(r.last_step_std, 0.25);
+  EXPECT_LT(r.iterations, 50);
+  const Eigen::Vector3d c = r.degeneracy.centre;
+  const Eigen::Isometry3d error = r.T_ref_scan * truth.inverse();
+  const Eigen::Vector3d moved = error * c - c;
+  for (int i = 0; i < 3; ++i) EXPECT_LE(std::abs(moved(i)), 4.0 * r.degeneracy.std(3 + i) + 1e-4) << i;
 }
 
 }  // namespace

@@ -89,6 +89,12 @@ struct DegeneracyReport {
   double relative_smallest() const;
 };
 
+// The motions (translations, rotations about an axis through a point, with pitch) spanned by `basis` (6-vectors in
+// the scaled coordinates of `report`: rotation x L about report.centre, translation), as analyze_constraint splits
+// its held subspace; std_mm and std_rad from report.covariance.
+std::vector<DegenerateDirection> motions_of(const std::vector<Vector6d>& basis, const DegeneracyReport& report,
+                                            const Matrix6d& H);
+
 // H from scan points q (reference frame) and the unit reference normals they are paired with.
 PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, const std::vector<Eigen::Vector3d>& n);
 
@@ -97,14 +103,17 @@ PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, con
 DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof = {});
 
 // The same split, with the degenerate subspace chosen by predicted standard deviation: an eigen-direction u is held
-// when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than tolerance_mm along, or
-// tolerance_rad about, some axis, and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
-// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of that and the sandwich estimate
-// u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is V diag(variances) V^T.
+// when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than max(tolerance_mm,
+// start_std_mm) along, or max(tolerance_rad, start_std_rad) about, some axis (loose, and the start known better than
+// the data would give it), and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
+// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of
+// that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is
+// V diag(variances) V^T. start_std 0 (the default here): the start is exact, every loose direction is held.
 // Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
 // second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
 // over the N points the std assumes independent.
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
-                                    double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0);
+                                    double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0,
+                                    double start_std_mm = 0.0, double start_std_rad = 0.0);
 
 }  // namespace conform

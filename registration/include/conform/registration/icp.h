@@ -39,6 +39,9 @@ struct IcpResult {
   double kernel_scale_mm = 0.0;      // the robust kernel's scale in the last step (0 without a kernel)
   double last_rotation_rad = 0.0;    // the last step's rotation
   double last_translation_mm = 0.0;  // the last step's displacement of the scan's centroid
+  // The last step in units of the pose's predicted std (its Mahalanobis length, convergence.h Eq. (1)); converged
+  // when below IcpOptions::convergence_std_fraction.
+  double last_step_std = 0.0;
   DegeneracyReport degeneracy;
 };
 

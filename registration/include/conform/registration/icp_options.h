@@ -36,7 +36,7 @@ enum class RobustKernel {
 
 enum class IcpTermination {
   kFailure,                // not run, or stopped by an error (the default until proven otherwise)
-  kConverged,              // the last step moved less than both tolerances
+  kConverged,              // the last step moved a small fraction of the pose's predicted std (or below the tolerances)
   kMaxIterations,          // the iteration limit came first
   kTooFewCorrespondences,  // fewer scan points than needed found a reference point within the maximum distance
   kInsufficientOverlap,    // converged, but fewer than min_inlier_fraction of the scan points are inliers
@@ -76,9 +76,15 @@ struct IcpOptions {
   // 2009, Sec. III-B); in (0, 1].
   double gicp_epsilon = 1e-3;
 
-  // --- termination: stop when a step rotates less than this and moves the scan's centroid less than that ---
-  // Tight enough that a noise-free fit lands within 1e-6 mm; loose enough that real data, whose pairs can flip back
-  // and forth by a hair, stops.
+  // --- termination (convergence.h in src/, Eq. (2)) ---
+  // Converged when a step is below this fraction of the pose's own predicted standard deviation (its Mahalanobis
+  // length under sigma^2 (N H)^-1, with what is still to come if the steps shrink geometrically): the pose then
+  // moves by a fraction of what the data resolves. 0.25: pairs flipping at the noise level make ICP cycle among poses
+  // up to 0.3 std apart (a 0.25 mm-noise profiler scan against its golden sample); such a cycle adds at most
+  // sqrt(1 + 0.25^2) - 1 = 3 % to the reported std.
+  double convergence_std_fraction = 0.25;
+  // ... or when a step rotates less than this and moves the scan's centroid less than that: the numerical floor of
+  // a noise-free fit (whose noise is the kernel's floor), tight enough that it lands within 1e-6 mm.
   double rotation_tolerance_rad = 1e-6;  // 5.7e-5 deg
   double translation_tolerance_mm = 1e-4;
   int max_iterations = 50;  // steps in all, both stages of multi-resolution
@@ -99,6 +105,13 @@ struct IcpOptions {
   // axis. Above a few micrometres from 100k points on a weak feature; a tube's axis is orders of magnitude looser.
   double free_tolerance_mm = 0.02;
   double free_tolerance_rad = 1.7453292519943295e-4;  // 0.01 deg
+  // How well the start is known, along (mm) and about (rad) every axis: a loose direction (above the tolerances) is
+  // held only where the data cannot do better than the start, i.e. its predicted std also exceeds these. Infinity
+  // (nothing known about the start: a coarse search's or a user's rough placement): a weak direction the data does
+  // measure is estimated, however loosely, and reported with its std; only what the data cannot fix at all (below)
+  // is held. 0: every loose direction is held (the start is exact).
+  double start_std_mm = std::numeric_limits<double>::infinity();
+  double start_std_rad = std::numeric_limits<double>::infinity();
   // Directions whose eigenvalue is below this fraction of the largest are free whatever their predicted std: only
   // second-order effects fix them (a tube's axis against a faceted mesh: ~1e-5), with systematic errors that do not
   // average out. In [0, 1); the ribbed plate's weak but real direction is 2.7e-4.

@@ -44,6 +44,13 @@ struct MultiStartOptions {
   bool probe_reference_symmetry = true;
   double symmetry_similarity = 0.1;
 
+  // With inlier scoring: the best's loose directions (its probe's predicted std above the probe's free tolerance, or
+  // held) are tested for symmetry: the best pose moved along each, both ways, by free_step_share of the scan's
+  // size (at least 3 inlier distances), keeps its fit (not told apart from the unmoved pose, as above). Those that
+  // do are free motions (a cylinder's axis shift and turn), and another start that differs from the best only along
+  // them is the same answer (same_up_to_free), not an ambiguity. 0: no test.
+  double free_step_share = 0.05;
+
   MultiStartOptions() { probe.max_iterations = 15; }
   bool IsValid(std::string* error) const;
 };
@@ -61,6 +68,7 @@ struct StartReport {
   double best_only_share = 0.0;
   double only_share = 0.0;
   bool separated = false;
+  bool same_up_to_free = false;  // differs from the best only along MultiStartResult::free_motions
 };
 
 struct MultiStartResult {
@@ -68,7 +76,19 @@ struct MultiStartResult {
   int best = -1;                    // index into starts
   bool ambiguous = false;
   int runner_up = -1;  // the start that made it ambiguous, else -1
+  // Motions along which the best pose can move without changing its fit (see free_step_share), in the reference
+  // frame at the best's pose, with their predicted std from its probe; empty when none.
+  std::vector<DegenerateDirection> free_motions;
 };
+
+// Whether T_b differs from T_a (both T_ref_scan) only along the free motions (reference frame, at T_a): with one
+// free rotation, the rotation's axis seen from the scan (T^-1 of the axis, an unoriented line: a cylinder's turn end
+// for end is its own symmetry too) agrees within max_rad and, nearest to scan_centre, within max_mm once free
+// translations are taken out; without one, the rotation between them is within max_rad and scan_centre moves
+// within max_mm once free translations are taken out; with several, their axes' common point agrees.
+bool same_up_to_free(const Eigen::Isometry3d& T_a, const Eigen::Isometry3d& T_b,
+                     const std::vector<DegenerateDirection>& free_motions, const Eigen::Vector3d& scan_centre,
+                     double max_rad, double max_mm);
 
 // Throws conform::Error for no starts or invalid options.
 MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
