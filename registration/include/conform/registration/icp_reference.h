@@ -12,6 +12,7 @@
 #include "conform/core/cloud.h"
 #include "conform/core/mesh.h"
 #include "conform/core/nearest_neighbors.h"
+#include "conform/core/phong_surface.h"
 #include "conform/core/triangle_index.h"
 
 namespace conform {
@@ -37,6 +38,8 @@ class IcpReference {
   const std::vector<unsigned char>& smooth() const { return smooth_; }
   // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
   const TriangleIndex& surface() const;
+  // The smooth surface over the faces (core/phong_surface.h) with these normals; built with surface(), same throws.
+  const PhongSurface& phong() const;
   std::size_t size() const { return points_.size(); }
 
  private:
@@ -49,6 +52,7 @@ class IcpReference {
   std::unique_ptr<KdTree> tree_;
   mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
   mutable std::unique_ptr<TriangleIndex> surface_;
+  mutable std::unique_ptr<PhongSurface> phong_;
 };
 
 }  // namespace conform
