@@ -52,7 +52,7 @@ class CompareCommand : public Command {
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.scan_path, options_.reference_path, options_.transform_path});
-    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path});
+    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path, options_.cad.save_mesh_path});
   }
 
   int run() override {

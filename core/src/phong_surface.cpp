@@ -57,20 +57,34 @@ void check_faces(const Mesh& mesh) {
 std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& normals,
                                            double crease_angle_rad) {
   const double crease_cosine = std::cos(crease_angle_rad);
-  std::vector<unsigned char> smooth(mesh.vertices.size(), 0);
-  std::vector<unsigned char> creased(mesh.vertices.size(), 0);
+  const std::size_t n = mesh.vertices.size();
+  // Each vertex's faces (compressed rows) with their unit normals; faces without area say nothing about the shape.
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const Face& f : mesh.faces) {
+    for (std::int32_t i : f) ++start[static_cast<std::size_t>(i) + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<Eigen::Vector3d> around(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (const Face& f : mesh.faces) {
     const Eigen::Vector3d& a = vertex(mesh, f[0]);
-    const Eigen::Vector3d n = (vertex(mesh, f[1]) - a).cross(vertex(mesh, f[2]) - a);
-    const double area2 = n.norm();
-    for (std::int32_t i : f) {
-      const auto v = static_cast<std::size_t>(i);
-      smooth[v] = 1;
-      // A face without area says nothing about the surface's shape.
-      if (area2 > 0.0 && std::abs(normals[v].dot(n)) < crease_cosine * area2) creased[v] = 1;
-    }
+    const Eigen::Vector3d u = unit_or_zero((vertex(mesh, f[1]) - a).cross(vertex(mesh, f[2]) - a));
+    for (std::int32_t i : f) around[fill[static_cast<std::size_t>(i)]++] = u;
   }
-  for (std::size_t v = 0; v < smooth.size(); ++v) smooth[v] = smooth[v] && !creased[v] ? 1 : 0;
+  std::vector<unsigned char> smooth(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    bool ok = start[v + 1] > start[v];
+    // Every face within the crease angle of the vertex normal and of every other face (a 45 deg chamfer is a crease
+    // even though the averaged normal is 22.5 deg from both sides).
+    for (std::size_t j = start[v]; ok && j < start[v + 1]; ++j) {
+      if (around[j].isZero()) continue;
+      ok = std::abs(normals[v].dot(around[j])) >= crease_cosine;
+      for (std::size_t k = j + 1; ok && k < start[v + 1]; ++k) {
+        ok = around[k].isZero() || std::abs(around[j].dot(around[k])) >= crease_cosine;
+      }
+    }
+    smooth[v] = ok ? 1 : 0;
+  }
   return smooth;
 }
 

@@ -289,6 +289,10 @@ TubeJointJobResult run_tube_joint(const TubeJointJobOptions& options) {
   if (!options.IsValid(&why)) throw Error("tube-joint: " + why);
   TubeJointJobResult result;
   result.T_S_L = options.leg_pose_path.empty() ? T_L_S(options.spec).inverse() : read_transform(options.leg_pose_path);
+  if (!options.cad.save_mesh_path.empty() && is_cad_file(options.leg_path) && is_cad_file(options.stub_path)) {
+    throw Error(options.cad.save_mesh_path + ": --cad-save-mesh takes one CAD file's tessellation, and the leg and the "
+                "stub are both CAD; save each with `conform info FILE --cad-save-mesh MESH`");
+  }
   const ReadOptions read = detail::read_options(NonFinitePolicy::kReject, options.cad);
   ReadReport leg_report, stub_report;
   Mesh leg = read_mesh(options.leg_path, read, &leg_report);

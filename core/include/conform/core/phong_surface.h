@@ -37,8 +37,9 @@ struct PhongPoint {
   bool lifted = false;
 };
 
-// Per vertex: 1 when every face around it is within the crease angle of its normal (the surface is smooth there), 0
-// at a crease or a corner and for a vertex without faces. normals: one unit normal per vertex.
+// Per vertex: 1 when every face around it is within the crease angle of its normal and of each other (the surface is
+// smooth there), 0 at a crease or a corner (a 45 deg chamfer's edge too) and for a vertex without faces. normals: one
+// unit normal per vertex.
 std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& normals,
                                            double crease_angle_rad = kDefaultCreaseAngleRad);
 
