@@ -156,7 +156,7 @@ TEST(CadJobs, SaveMeshWritesTheTessellationUsed) {
 TEST(CadJobs, SicpSurfaceFromStepGivesTheMeshsTrajectory) {
   test::TempDir dir;
   ASSERT_EQ(conform_run({"generate", "plate", "--out", dir.file("p.ply"), "--scan-points", "8000",
-                         "--contour-spacing", "2", "--surface-edge", "8", "--quiet"})
+                         "--contour-spacing", "2", "--surface-edge", "20", "--quiet"})
                 .exit_code,
             0);
   Mesh nominal = read_mesh(dir.file("p.nominal.ply"));
@@ -189,14 +189,15 @@ TEST(CadJobs, SicpSurfaceFromStepGivesTheMeshsTrajectory) {
 TEST(CadJobs, TubeJointWithAStepLegGivesTheMeshsPath) {
   test::TempDir dir;
   const test::RunResult g = conform_run({"generate", "tube-joint", "--out-leg", dir.file("leg.ply"), "--out-stub",
-                                         dir.file("stub.ply"), "--leg-radius", "300", "--stub-radius", "160",
+                                         dir.file("stub.ply"), "--out-truth", dir.file("truth.csv"), "--leg-radius",
+                                         "300", "--stub-radius", "160",
                                          "--wall", "10", "--edge", "10", "--pitch-deg", "60", "--offset", "30",
                                          "--json"});
   ASSERT_EQ(g.exit_code, 0) << g.err;
   std::ostringstream protrusion;
   protrusion.precision(17);
   protrusion << nlohmann::json::parse(g.out)["protrusion_mm"].get<double>();
-  test::write_cad(test::cylinder(300.0, -1500.0, 1500.0), dir.file("leg.step"), CadFormat::kStep, "MM");
+  test::write_cad(test::cylinder(300.0, -700.0, 700.0), dir.file("leg.step"), CadFormat::kStep, "MM");
   const auto joint = [&](const std::string& leg, const std::string& out) {
     return conform_run({"tube-joint", "--leg", leg, "--stub", dir.file("stub.ply"), "--pitch-deg", "60", "--offset",
                         "30", "--protrusion", protrusion.str(), "--step-deg", "5", "--out-path", out, "--json"});
