@@ -33,8 +33,9 @@ class IcpReference {
   const KdTree& tree() const { return *tree_; }
   bool has_surface() const { return !faces_.empty(); }
   const std::vector<Face>& faces() const { return faces_; }
-  // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal (a smooth surface
-  // there), 0 at a crease or corner (a CAD edge) and for a vertex without faces. Empty for a cloud.
+  // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal and of each other (a
+  // smooth surface there; core/phong_surface.h smooth_vertices), 0 at a crease or corner (a CAD edge) and for a
+  // vertex without faces. Empty for a cloud.
   const std::vector<unsigned char>& smooth() const { return smooth_; }
   // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
   const TriangleIndex& surface() const;
