@@ -109,7 +109,8 @@ class AlignCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.scan_path, options_.reference_path});
     if (init_.rfind("pairs:", 0) == 0) files.add_input(init_.substr(6));
-    files.add_outputs({options_.out_transform_path, options_.out_aligned_path, report_path_});
+    files.add_outputs(
+        {options_.out_transform_path, options_.out_aligned_path, options_.cad.save_mesh_path, report_path_});
   }
 
   int run() override {

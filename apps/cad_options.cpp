@@ -16,6 +16,9 @@ void add_cad_options(CLI::App& command, CadReadOptions& cad) {
           "STEP/IGES references: angular deflection, deg; default matched to --cad-deflection (the angle of a chord "
           "with that sagitta on a 1 mm radius)")
       ->check(CLI::Range(0.0, 90.0));
+  command.add_option("--cad-save-mesh", cad.save_mesh_path,
+                     "STEP/IGES references: also write the tessellation used (mm, welded) to this .ply, .stl or .obj "
+                     "file, to see it or to reuse it without tessellating again");
 }
 
 void print_cad_text(const std::vector<CadReport>& reports, std::FILE* out) {

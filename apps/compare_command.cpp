@@ -43,6 +43,10 @@ class CompareCommand : public Command {
                  "(blue below, green within tolerance, red above)");
     c.add_option("--out-histogram", options_.out_histogram_path,
                  "Write a histogram of the deviations as .png, the tolerance band marked");
+    c.add_flag("--flat-facets", options_.flat_facets,
+               "Measure to the reference mesh's flat triangles as they are, not to the smooth surface its vertices "
+               "and normals describe (Phong; creases over 30 deg stay sharp), which removes the facets' chord error "
+               "on curved surfaces");
     c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm");
     add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
@@ -51,7 +55,8 @@ class CompareCommand : public Command {
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.scan_path, options_.reference_path, options_.transform_path});
-    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path, report_path_});
+    files.add_outputs(
+        {options_.out_deviation_path, options_.out_histogram_path, options_.cad.save_mesh_path, report_path_});
   }
 
   int run() override {
@@ -90,8 +95,9 @@ class CompareCommand : public Command {
     const DeviationStatistics& s = r.statistics;
     std::printf("scan         %s (%zu points)\n", options_.scan_path.c_str(), r.scan_points);
     if (r.reference_faces > 0) {
-      std::printf("reference    %s (%zu faces): signed distance to its surface, + outside\n",
-                  options_.reference_path.c_str(), r.reference_faces);
+      std::printf("reference    %s (%zu faces): signed distance to its surface, + outside%s\n",
+                  options_.reference_path.c_str(), r.reference_faces,
+                  options_.flat_facets ? " (flat facets)" : "");
     } else {
       std::printf("reference    %s (%zu points, no faces): unsigned distance to the nearest point\n",
                   options_.reference_path.c_str(), r.reference_points);

@@ -40,6 +40,13 @@ class FitCylinderCommand : public Command {
     c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
     c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
     add_report_option(c, report_path_);
+    c.add_option("--points", points_,
+                 "Points to fit: auto (a CAD input's surface, any other input's vertices), vertices, or surface "
+                 "(samples of a mesh's smooth surface: for a coarse mesh whose vertices lie on its rims only)")
+        ->check(CLI::IsMember({"auto", "vertices", "surface"}));
+    c.add_option("--surface-samples", options_.surface_samples,
+                 "Surface points: how many, spread by area over the mesh's smooth surface")
+        ->check(CLI::PositiveNumber);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -47,11 +54,14 @@ class FitCylinderCommand : public Command {
 
   void declare_files(OutputSet& files) override {
     files.add_input(options_.input_path);
-    files.add_outputs({options_.out_path, report_path_});
+    files.add_outputs({options_.out_path, options_.cad.save_mesh_path, report_path_});
   }
 
   int run() override {
     if (max_radius_->count() > 0) options_.fit.max_radius_mm = max_radius_mm_;
+    options_.points = points_ == "vertices" ? CylinderPoints::kVertices
+                      : points_ == "surface" ? CylinderPoints::kSurface
+                                             : CylinderPoints::kAuto;
     if (!axis_.empty()) options_.fit.axis_prior = Eigen::Vector3d(axis_[0], axis_[1], axis_[2]);
     options_.fit.axis_prior_tolerance_rad = radians(axis_tolerance_deg_);
     if (!axis_.empty() && !(options_.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
@@ -69,7 +79,10 @@ class FitCylinderCommand : public Command {
       print_text(result);
     }
     if (!result.fit.ok) {
-      warn("fit-cylinder: " + result.input_path + ": " + result.fit.termination);
+      warn("fit-cylinder: " + result.input_path + ": " + result.fit.termination +
+           (result.input_faces > 0 && !result.surface_points
+                ? " (a coarse mesh, e.g. exported from CAD, may have vertices on its rims only: try --points surface)"
+                : ""));
       return 1;
     }
     return 0;
@@ -80,8 +93,8 @@ class FitCylinderCommand : public Command {
     const CylinderFitResult& f = job.fit;
     const Eigen::Vector3d& c = f.cylinder.axis_point;
     const Eigen::Vector3d& a = f.cylinder.axis_direction;
-    std::printf("input         %s (%zu points, normals: %s)\n", job.input_path.c_str(), job.points,
-                to_string(job.normals));
+    std::printf("input         %s (%zu %s, normals: %s)\n", job.input_path.c_str(), job.points,
+                job.surface_points ? "surface samples" : "points", to_string(job.normals));
     std::printf("result        %s\n", f.ok ? "cylinder" : f.termination.c_str());
     if (f.refine_rounds == 0) return;  // no model to describe: RANSAC found none
     std::printf("radius mm     %.4f  (std %.4f)\n", f.cylinder.radius_mm, f.radius_std_mm);
@@ -101,6 +114,7 @@ class FitCylinderCommand : public Command {
   std::vector<double> axis_;
   double axis_tolerance_deg_ = 10.0;
   std::string report_path_;
+  std::string points_ = "auto";
   bool json_ = false;
   bool quiet_ = false;
 };

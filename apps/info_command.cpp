@@ -25,6 +25,11 @@ class InfoCommand : public Command {
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
+  void declare_files(OutputSet& files) override {
+    files.add_input(options_.path);
+    files.add_output(options_.cad.save_mesh_path);
+  }
+
   int run() override {
     options_.cad.progress = stderr_progress(json_);
     const InfoResult info = run_info(options_);
@@ -86,6 +91,7 @@ class InfoCommand : public Command {
       if (b.kind == CadBodyKind::kSolid) std::printf(", volume %.4f mm3%s", b.volume_mm3, b.flipped ? " (flipped)" : "");
       std::printf("\n");
     }
+    if (!cad.saved_mesh_path.empty()) std::printf("wrote        %s\n", cad.saved_mesh_path.c_str());
   }
 
   InfoOptions options_;

@@ -86,7 +86,7 @@ class SicpCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.contour_path, options_.scan_path, options_.trajectory_path, options_.surface_path,
                       options_.truth_path});
-    files.add_outputs({options_.out_trajectory_path, options_.out_rows_path});
+    files.add_outputs({options_.out_trajectory_path, options_.out_rows_path, options_.cad.save_mesh_path});
   }
 
   int run() override {

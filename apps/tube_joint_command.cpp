@@ -105,7 +105,7 @@ class TubeJointCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs(
         {o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path, groove_table_});
-    files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld});
+    files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld, o_.cad.save_mesh_path});
   }
 
   int run() override {

@@ -95,6 +95,11 @@ bool CadReadOptions::IsValid(std::string* error) const {
     why = "the CAD deflection must be between 0.0001 and 10 mm, not " + std::to_string(deflection_mm);
   } else if (!(std::isfinite(angular_deflection_rad) && angular_deflection_rad >= 0.0)) {
     why = "the CAD angular deflection must be >= 0 rad";
+  } else if (!save_mesh_path.empty()) {
+    const std::string e = file_extension(save_mesh_path);
+    if (e != ".ply" && e != ".stl" && e != ".obj") {
+      why = save_mesh_path + ": the tessellation is saved as .ply, .stl or .obj, not '" + e + "'";
+    }
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -129,7 +134,7 @@ std::string CadReport::summary() const {
                 "%.4g rad",
                 format.c_str(), file_unit.c_str(), mm_per_file_unit, bodies.size(), solids, faces, triangles,
                 deflection_mm, angular_deflection_rad);
-  return path + ": " + text;
+  return path + ": " + text + (saved_mesh_path.empty() ? "" : ", saved to " + saved_mesh_path);
 }
 
 bool is_cad_file(const std::string& path) {
@@ -191,6 +196,12 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
       if (end > start) warnings->push_back(path + ": " + text.substr(start, end - start));
       start = end + 1;
     }
+  }
+  if (!options.save_mesh_path.empty()) {
+    WriteOptions write;
+    write.double_precision = true;  // read back, the same coordinates to the last bit (.ply; .stl is float)
+    write_mesh(options.save_mesh_path, welded.mesh, write);
+    cad.saved_mesh_path = options.save_mesh_path;
   }
   if (report_out != nullptr) *report_out = cad;
   return std::move(welded.mesh);

@@ -1,6 +1,7 @@
 // Deviation of scan points from a reference: signed point-to-surface distance through TriangleIndex (sign from the
-// angle-weighted pseudo-normal at the closest point, Baerentzen & Aanaes 2005), or unsigned point-to-point distance
-// through KdTree when the reference has no faces.
+// angle-weighted pseudo-normal at the closest point, Baerentzen & Aanaes 2005), moved onto the smooth surface of
+// PhongSurface where the reference is curved, or unsigned point-to-point distance through KdTree when the reference
+// has no faces.
 
 #include "conform/evaluation/deviation.h"
 
@@ -111,7 +112,7 @@ DeviationResult point_deviation(const std::vector<Eigen::Vector3d>& scan, const 
 }  // namespace
 
 DeviationResult compute_deviation(const std::vector<Eigen::Vector3d>& scan, const TriangleIndex& reference,
-                                  const DeviationOptions& options) {
+                                  const PhongSurface* smooth, const DeviationOptions& options) {
   check_options(options);
   check_finite(scan, "scan");
   DeviationResult result;
@@ -121,6 +122,15 @@ DeviationResult compute_deviation(const std::vector<Eigen::Vector3d>& scan, cons
   for_each_point(scan.size(), options.progress, [&](std::size_t i) {
     const SurfacePoint s = reference.closest(scan[i], options.max_distance_mm);
     if (!s.found()) return;
+    const PhongPoint lifted = smooth != nullptr && options.smooth_surface ? smooth->lift(s) : PhongPoint{};
+    if (lifted.lifted) {
+      // On the smooth surface the side is the one its interpolated normal points to: a point between a facet and the
+      // curved surface above it is inside.
+      const double d = (scan[i] - lifted.point).norm();
+      result.deviation_mm[i] = (scan[i] - lifted.point).dot(lifted.normal) < 0.0 ? -d : d;
+      result.closest[i] = lifted.point;
+      return;
+    }
     const double d = std::sqrt(s.sq_distance);
     // The pseudo-normal's side (Baerentzen & Aanaes 2005, Theorem 1); a point on the surface counts as +0.
     result.deviation_mm[i] = (scan[i] - s.point).dot(reference.normal_at(s)) < 0.0 ? -d : d;
@@ -136,7 +146,11 @@ DeviationResult compute_deviation(const std::vector<Eigen::Vector3d>& scan, cons
   check_finite(scan, "scan");
   if (reference.vertices.empty()) throw Error("reference: holds no points to measure the deviation from");
   if (!reference.has_faces()) return point_deviation(scan, reference, options);
-  return compute_deviation(scan, TriangleIndex(reference), options);
+  const TriangleIndex index(reference);
+  if (!options.smooth_surface) return compute_deviation(scan, index, nullptr, options);
+  const std::vector<Eigen::Vector3d> no_normals;
+  const PhongSurface smooth(reference, reference.has_normals() ? reference.normals : no_normals);
+  return compute_deviation(scan, index, &smooth, options);
 }
 
 }  // namespace conform

@@ -29,7 +29,8 @@ nlohmann::json cad_json(const std::vector<CadReport>& reports) {
                     {"faces", r.faces},
                     {"triangles", r.triangles},
                     {"vertices", r.vertices},
-                    {"bodies", bodies}});
+                    {"bodies", bodies},
+                    {"saved_mesh", json_path_or_null(r.saved_mesh_path)}});
   }
   return list;
 }

@@ -128,6 +128,7 @@ CompareResult run_compare(const CompareOptions& options) {
 
   DeviationOptions deviation;
   deviation.max_distance_mm = options.max_distance_mm;
+  deviation.smooth_surface = !options.flat_facets;
   deviation.progress = options.progress;
   result.deviation = compute_deviation(scan.vertices, reference, deviation);
   DeviationStatisticsOptions statistics;

@@ -19,6 +19,7 @@ nlohmann::json compare_json(const CompareOptions& options, const CompareResult& 
                       {"matched", r.deviation.matched},
                       {"reference_points", r.reference_points},
                       {"reference_faces", r.reference_faces},
+                      {"surface", r.reference_faces == 0 ? "points" : options.flat_facets ? "flat facets" : "smooth"},
                       {"mean_mm", s.mean_mm},
                       {"std_mm", s.std_mm},
                       {"rms_mm", s.rms_mm},

@@ -7,7 +7,9 @@
 #include "conform/core/atomic_file.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
+#include "conform/core/mesh_sampling.h"
 #include "conform/core/normals.h"
+#include "conform/core/phong_surface.h"
 #include "cad_inputs.h"
 
 namespace conform {
@@ -34,7 +36,40 @@ std::vector<Eigen::Vector3d> normals_for(const Mesh& mesh, const FitCylinderJobO
   return normals;
 }
 
+// The points to fit and their normals: the vertices, or samples of the smooth surface of a mesh.
+std::vector<Eigen::Vector3d> points_for(const Mesh& mesh, const FitCylinderJobOptions& options, bool cad,
+                                        FitCylinderJobResult& result, std::vector<Eigen::Vector3d>& normals) {
+  const bool surface = options.points == CylinderPoints::kSurface || (options.points == CylinderPoints::kAuto && cad);
+  if (!surface) {
+    normals = normals_for(mesh, options, &result.normals);
+    return mesh.vertices;
+  }
+  if (!mesh.has_faces()) {
+    throw Error("--points surface needs a mesh with faces; this input is a point cloud (use --points vertices)");
+  }
+  report(options.fit.progress, "cylinder: surface samples", 0.0);
+  const PhongSurface smooth(mesh, mesh.has_normals() ? mesh.normals : std::vector<Eigen::Vector3d>{});
+  MeshSurfaceSample sample = sample_mesh_surface(mesh, options.surface_samples, &smooth);
+  report(options.fit.progress, "cylinder: surface samples", 1.0);
+  result.surface_points = true;
+  result.normals = NormalSource::kSurface;
+  normals = std::move(sample.normals);
+  return std::move(sample.points);
+}
+
 }  // namespace
+
+const char* to_string(CylinderPoints points) {
+  switch (points) {
+    case CylinderPoints::kAuto:
+      return "auto";
+    case CylinderPoints::kVertices:
+      return "vertices";
+    case CylinderPoints::kSurface:
+      return "surface";
+  }
+  return "unknown";
+}
 
 const char* to_string(NormalSource source) {
   switch (source) {
@@ -44,6 +79,8 @@ const char* to_string(NormalSource source) {
       return "pca (mesh faces)";
     case NormalSource::kCloudPca:
       return "pca";
+    case NormalSource::kSurface:
+      return "surface";
   }
   return "unknown";
 }
@@ -57,6 +94,7 @@ bool FitCylinderJobOptions::IsValid(std::string* error) const {
   if (!out_path.empty() && file_extension(out_path) != ".csv") {
     return fail(out_path + ": the residuals file must be .csv");
   }
+  if (surface_samples == 0) return fail("the number of surface samples must be > 0");
   std::string why;
   if (!fit.IsValid(&why)) return fail(why);
   return true;
@@ -86,18 +124,21 @@ FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options) {
   const Mesh mesh = read_geometry(options.input_path, read, &report);
   FitCylinderJobResult result;
   result.input_path = options.input_path;
-  result.points = mesh.vertices.size();
+  result.input_faces = mesh.faces.size();
   result.warnings = report.warnings;
   detail::keep_cad_report(report, result.cad_inputs);
+  std::vector<Eigen::Vector3d> points;
   try {
-    const std::vector<Eigen::Vector3d> normals = normals_for(mesh, options, &result.normals);
-    result.fit = fit_cylinder(mesh.vertices, normals, options.fit);
+    std::vector<Eigen::Vector3d> normals;
+    points = points_for(mesh, options, report.cad.read, result, normals);
+    result.points = points.size();
+    result.fit = fit_cylinder(points, normals, options.fit);
   } catch (const Error& e) {
     throw Error(options.input_path + ": " + e.what());
   }
   if (result.normals == NormalSource::kCloudPca) result.fit.side = CylinderSide::kUnknown;
   if (!options.out_path.empty()) {
-    write_file_atomically(options.out_path, cylinder_residuals_csv(mesh.vertices, result.fit));
+    write_file_atomically(options.out_path, cylinder_residuals_csv(points, result.fit));
     result.out_path = options.out_path;
   }
   if (options.keep_geometry) result.points_mm = mesh.vertices;

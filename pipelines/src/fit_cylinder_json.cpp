@@ -16,6 +16,7 @@ nlohmann::json fit_cylinder_json(const FitCylinderJobResult& job) {
   const CylinderFitResult& f = job.fit;
   nlohmann::json j = {{"input", job.input_path},
           {"points", job.points},
+          {"fitted_points", job.surface_points ? "surface samples" : "vertices"},
           {"normals", to_string(job.normals)},
           {"ok", f.ok},
           {"converged", f.converged},

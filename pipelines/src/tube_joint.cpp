@@ -11,7 +11,9 @@
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
+#include "conform/core/mesh_sampling.h"
 #include "conform/core/mesh_weld.h"
+#include "conform/core/phong_surface.h"
 #include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/registration/tube_reference.h"
@@ -81,6 +83,25 @@ void warn_coarse(const char* name, const ScanQuality& q, std::vector<std::string
        << " mm); normals and refined points degrade, use edges under "
        << TubeJointSolveOptions::kCoarseEdgeAngleDeg / q.edge_angle_deg * q.edge_mm << " mm";
   warnings->push_back(text.str());
+}
+
+// A CAD tessellation's vertices lie on its faces' boundaries only (a cylinder's on its two rims, metres apart), but the
+// normals and the refinement fit the k nearest vertices of each mesh (joint_geometry.h): points spread over its smooth
+// surface (core/mesh_sampling.h) are added as vertices without faces, so that those neighbours are near. About one per
+// 4 mm x 4 mm (k_normals = 40 of them then span about 14 mm, like a fine scan's), at most 2 million.
+Mesh with_surface_points(Mesh mesh) {
+  constexpr double kSpacingMm = 4.0;
+  constexpr double kMostPoints = 2e6;
+  double area = 0.0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) area += face_area(mesh, f);
+  const double spacing = std::max(kSpacingMm, std::sqrt(area / kMostPoints));
+  const auto count = static_cast<std::size_t>(std::ceil(area / (spacing * spacing)));
+  if (count == 0) return mesh;
+  const PhongSurface smooth(mesh);
+  const MeshSurfaceSample sample = sample_mesh_surface(mesh, count, &smooth);
+  mesh.normals.clear();
+  mesh.vertices.insert(mesh.vertices.end(), sample.points.begin(), sample.points.end());
+  return mesh;
 }
 
 // The path figures of the points written (after refinement).
@@ -289,12 +310,18 @@ TubeJointJobResult run_tube_joint(const TubeJointJobOptions& options) {
   if (!options.IsValid(&why)) throw Error("tube-joint: " + why);
   TubeJointJobResult result;
   result.T_S_L = options.leg_pose_path.empty() ? T_L_S(options.spec).inverse() : read_transform(options.leg_pose_path);
+  if (!options.cad.save_mesh_path.empty() && is_cad_file(options.leg_path) && is_cad_file(options.stub_path)) {
+    throw Error(options.cad.save_mesh_path + ": --cad-save-mesh takes one CAD file's tessellation, and the leg and the "
+                "stub are both CAD; save each with `conform info FILE --cad-save-mesh MESH`");
+  }
   const ReadOptions read = detail::read_options(NonFinitePolicy::kReject, options.cad);
   ReadReport leg_report, stub_report;
   Mesh leg = read_mesh(options.leg_path, read, &leg_report);
   Mesh stub = read_mesh(options.stub_path, read, &stub_report);
   detail::keep_cad_report(leg_report, result.cad_inputs);
   detail::keep_cad_report(stub_report, result.cad_inputs);
+  if (leg_report.cad.read) leg = with_surface_points(std::move(leg));
+  if (stub_report.cad.read) stub = with_surface_points(std::move(stub));
   if (!leg.has_faces()) throw Error(options.leg_path + ": the leg must be a triangle mesh (it has no faces)");
   if (!stub.has_faces()) throw Error(options.stub_path + ": the stub must be a triangle mesh (it has no faces)");
   if (!options.leg_markers_path.empty()) {

@@ -7,38 +7,13 @@
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
 #include "conform/core/normals.h"
+#include "conform/core/phong_surface.h"
 
 namespace conform {
 
 namespace {
 
 constexpr int kNormalNeighbours = 16;
-// A vertex whose normal is more than this from one of its faces' normals sits on a crease (its faces meet at up to
-// twice the angle): a CAD edge, a box's corner. 30 deg, chosen on seed sweeps (docs/align.md): 20 also took the
-// ribbed plate's steep rib ends (under-sampled by its mesh) for creases (0.010-0.020 mm off along the ribs against
-// 0.002-0.010), 40 rounded the box part's 45 deg chamfer (0.002-0.004 mm against 0.001-0.002); a 4 mm mesh of a
-// 150 mm radius (1.5 deg between neighbouring faces) is smooth.
-const double kCreaseCosine = std::cos(30.0 * M_PI / 180.0);
-
-// Which vertices have every incident face within the crease angle of their normal.
-std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& normals) {
-  std::vector<unsigned char> smooth(mesh.vertices.size(), 0);
-  std::vector<unsigned char> creased(mesh.vertices.size(), 0);
-  for (const Face& f : mesh.faces) {
-    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(f[0])];
-    const Eigen::Vector3d n =
-        (mesh.vertices[static_cast<std::size_t>(f[1])] - a).cross(mesh.vertices[static_cast<std::size_t>(f[2])] - a);
-    const double area2 = n.norm();
-    for (std::int32_t i : f) {
-      const auto v = static_cast<std::size_t>(i);
-      smooth[v] = 1;
-      // A face without area says nothing about the surface's shape.
-      if (area2 > 0.0 && std::abs(normals[v].dot(n)) < kCreaseCosine * area2) creased[v] = 1;
-    }
-  }
-  for (std::size_t v = 0; v < smooth.size(); ++v) smooth[v] = smooth[v] && !creased[v] ? 1 : 0;
-  return smooth;
-}
 
 // PCA normals of a cloud without faces, turned away from its centroid: the sign does not matter to point-to-plane
 // distances, but a consistent one keeps features (FPFH) comparable between scan and reference.
@@ -101,8 +76,15 @@ const TriangleIndex& IcpReference::surface() const {
     mesh.vertices = points_;
     mesh.faces = faces_;
     surface_ = std::make_unique<TriangleIndex>(mesh);
+    // The reference's own normals at smooth vertices, so the curved surface is the one its normals describe.
+    phong_ = std::make_unique<PhongSurface>(mesh, normals_);
   });
   return *surface_;
+}
+
+const PhongSurface& IcpReference::phong() const {
+  surface();
+  return *phong_;
 }
 
 }  // namespace conform

@@ -12,8 +12,6 @@ namespace {
 // points one thread is faster, and on a loaded machine much faster.
 constexpr std::ptrdiff_t kSerialBelow = 16384;
 constexpr int kChunk = 512;
-// Phong tessellation's shape factor: 1/2 reproduces quadratic surfaces.
-constexpr double kPhongShape = 0.5;
 
 // Nearest reference point: the tree searches in float, the distance is then taken in double.
 void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm, Pair& pair,
@@ -29,48 +27,19 @@ void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, doub
   pair.found = pair.distance <= max_distance_mm;
 }
 
-// Phong tessellation (Boubekeur & Alexa 2008, Eq. (2)-(3)) of the closest point s on the flat triangles with the
-// shape factor 1/2: s moves by half the barycentric mean of its offsets to the tangent planes of the face's vertices,
-// and the normal is the barycentric mean of theirs. That reproduces a quadratic surface exactly from its vertices and
-// their normals, where the flat facets are off by their chord error (kappa h^2 / 8 at an edge's middle: 0.013 mm on
-// a 4 mm mesh of a 150 mm radius), an error that is systematic and biases the pose. A corner whose vertex normal is
-// more than the crease angle from the face's normal (a sharp CAD edge, where the vertex normal averages faces at
-// right angles) keeps the flat face there.
+// The closest point on the flat triangles moved onto the smooth surface the vertices and their normals describe
+// (core/phong_surface.h: Phong tessellation, creases kept sharp): the flat facets are off by their chord error
+// (kappa h^2 / 8 at an edge's middle: 0.013 mm on a 4 mm mesh of a 150 mm radius), an error that is systematic and
+// biases the pose.
 void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm,
                            Pair& pair, PairCache* cache, std::size_t i) {
   const SurfacePoint s = cache != nullptr ? cache->closest(reference.surface(), i, q, max_distance_mm)
                                           : reference.surface().closest(q, max_distance_mm);
   if (!s.found()) return;
-  const Face& face = reference.faces()[static_cast<std::size_t>(s.face)];
-  const std::vector<Eigen::Vector3d>& points = reference.points();
-  const std::vector<Eigen::Vector3d>& normals = reference.normals();
-  const Eigen::Vector3d& a = points[static_cast<std::size_t>(face[0])];
-  Eigen::Vector3d face_normal =
-      (points[static_cast<std::size_t>(face[1])] - a).cross(points[static_cast<std::size_t>(face[2])] - a);
-  const double area2 = face_normal.norm();
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
-  if (area2 > 0.0 && std::isfinite(area2)) {
-    face_normal /= area2;
-    for (int k = 0; k < 3; ++k) {
-      const auto v = static_cast<std::size_t>(face[static_cast<std::size_t>(k)]);
-      const double cosine = normals[v].dot(face_normal);
-      if (reference.smooth()[v]) {
-        const Eigen::Vector3d n = cosine < 0.0 ? Eigen::Vector3d(-normals[v]) : normals[v];
-        offset += s.barycentric[k] * (s.point - points[v]).dot(n) * n;
-        normal += s.barycentric[k] * n;
-      } else {
-        normal += s.barycentric[k] * face_normal;
-      }
-    }
-  }
-  const double length = normal.norm();
-  if (length > 0.0) {
-    pair.target = s.point - kPhongShape * offset;
-    pair.normal = normal / length;
-  } else {  // a face without area
-    pair.target = s.point;
-    pair.normal = reference.surface().normal_at(s);
-  }
+  const PhongPoint smooth = reference.phong().lift(s);
+  pair.target = smooth.point;
+  // A face without area has no normal of its own: its edges' pseudo-normal.
+  pair.normal = smooth.normal.isZero() ? reference.surface().normal_at(s) : smooth.normal;
   pair.distance = (q - pair.target).norm();
   pair.found = pair.distance <= max_distance_mm && pair.normal.allFinite();
 }

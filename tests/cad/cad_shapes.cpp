@@ -5,6 +5,10 @@
 #include <stdexcept>
 
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepClass_FaceClassifier.hxx>
@@ -40,6 +44,28 @@ TopoDS_Shape box_with_boss_and_hole() {
 }
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
+
+TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm) {
+  return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, z0_mm), gp::DZ()), radius_mm, z1_mm - z0_mm).Shape();
+}
+
+TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,
+                                const std::vector<std::array<std::int32_t, 3>>& triangles) {
+  TopoDS_Compound compound;
+  BRep_Builder builder;
+  builder.MakeCompound(compound);
+  const auto point = [&](std::int32_t i) {
+    const Eigen::Vector3d& v = vertices[static_cast<std::size_t>(i)];
+    return gp_Pnt(v.x(), v.y(), v.z());
+  };
+  for (const auto& t : triangles) {
+    BRepBuilderAPI_MakePolygon wire(point(t[0]), point(t[1]), point(t[2]), Standard_True);
+    BRepBuilderAPI_MakeFace face(wire.Wire(), Standard_True);
+    if (!face.IsDone()) throw std::runtime_error("faces_of_triangles: a triangle without area");
+    builder.Add(compound, face.Face());
+  }
+  return compound;
+}
 
 TopoDS_Shape torus() { return BRepPrimAPI_MakeTorus(gp_Ax2(gp::Origin(), gp::DZ()), 10.0, 3.0).Shape(); }
 

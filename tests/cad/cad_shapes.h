@@ -3,6 +3,7 @@
 // scans sampled on their exact surfaces with a known normal offset (the noise), so that a deviation computed
 // against the tessellated reference can be compared with the offset point by point.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,12 @@ TopoDS_Shape box_with_boss_and_hole();
 TopoDS_Shape cylinder();
 // Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
 TopoDS_Shape torus();
+// A solid cylinder of radius r along z from z0 to z1.
+TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm);
+// Every triangle a planar face of its own, in one compound (free faces, wound as the triangles): a mesh as CAD, whose
+// tessellation gives back the same triangles.
+TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,
+                                const std::vector<std::array<std::int32_t, 3>>& triangles);
 
 enum class CadFormat { kStep, kIges };
 // unit: "MM" or "M" (the file's coordinates are then in metres).

@@ -24,8 +24,13 @@ struct CadReadOptions {
   // at most 0.5 rad), so only features smaller than 1 mm in radius are limited by the angle.
   double angular_deflection_rad = 0.0;
   ProgressFn progress;  // stages "read CAD", "tessellate CAD"
+  // Not empty: read_cad also writes the tessellation it returns (welded, mm) to this .ply (double precision), .stl or
+  // .obj file, atomically (core/atomic_file.h: inside a command's OutputSet, committed with its other outputs), so
+  // that a user can see and reuse the mesh conform measured against. Not written when reading fails.
+  std::string save_mesh_path;
 
-  // False (and why) for a deflection that is not finite and in [1e-4, 10] mm, or a negative angular deflection.
+  // False (and why) for a deflection that is not finite and in [1e-4, 10] mm, a negative angular deflection, or a
+  // save_mesh_path that is not .ply, .stl or .obj.
   bool IsValid(std::string* error) const;
   double angular_deflection() const;  // as used (resolved when 0)
 };
@@ -57,6 +62,7 @@ struct CadReport {
   std::size_t triangles = 0;     // after welding
   std::size_t vertices = 0;
   std::vector<CadBody> bodies;
+  std::string saved_mesh_path;   // where the tessellation was written (CadReadOptions::save_mesh_path), or empty
 
   std::string summary() const;  // one line: "part.step: STEP in MM, 3 solids, 42 faces -> 1234 triangles (0.005 mm ...)"
 };

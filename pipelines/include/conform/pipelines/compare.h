@@ -40,6 +40,9 @@ struct CompareOptions {
   double mm_per_unit = 1.0;    // millimetres per unit of every input (coordinates, the transform's translation); not CAD
   std::optional<double> tolerance_mm;  // the band +-t for the in/above/below shares; none by default
   double max_distance_mm = std::numeric_limits<double>::infinity();  // farther scan points are unmatched (NaN)
+  // True: distances to the reference's flat triangles as they are; false: to the smooth surface its vertices and
+  // normals describe (DeviationOptions::smooth_surface), free of the facets' chord error on curved surfaces.
+  bool flat_facets = false;
 
   std::string out_deviation_path;  // .ply; empty: not written
   DeviationColourFn colour;        // the map's vertex colours; empty: the map has only `deviation_mm`

@@ -12,6 +12,7 @@
 #include "conform/core/cloud.h"
 #include "conform/core/mesh.h"
 #include "conform/core/nearest_neighbors.h"
+#include "conform/core/phong_surface.h"
 #include "conform/core/triangle_index.h"
 
 namespace conform {
@@ -32,11 +33,14 @@ class IcpReference {
   const KdTree& tree() const { return *tree_; }
   bool has_surface() const { return !faces_.empty(); }
   const std::vector<Face>& faces() const { return faces_; }
-  // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal (a smooth surface
-  // there), 0 at a crease or corner (a CAD edge) and for a vertex without faces. Empty for a cloud.
+  // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal and of each other (a
+  // smooth surface there; core/phong_surface.h smooth_vertices), 0 at a crease or corner (a CAD edge) and for a
+  // vertex without faces. Empty for a cloud.
   const std::vector<unsigned char>& smooth() const { return smooth_; }
   // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
   const TriangleIndex& surface() const;
+  // The smooth surface over the faces (core/phong_surface.h) with these normals; built with surface(), same throws.
+  const PhongSurface& phong() const;
   std::size_t size() const { return points_.size(); }
 
  private:
@@ -49,6 +53,7 @@ class IcpReference {
   std::unique_ptr<KdTree> tree_;
   mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
   mutable std::unique_ptr<TriangleIndex> surface_;
+  mutable std::unique_ptr<PhongSurface> phong_;
 };
 
 }  // namespace conform

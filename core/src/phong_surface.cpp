@@ -1,0 +1,195 @@
+#include "conform/core/phong_surface.h"
+
+#include <cmath>
+#include <string>
+
+#include "conform/core/error.h"
+
+namespace conform {
+
+namespace {
+
+// Phong tessellation's shape factor: 1/2 reproduces quadratic surfaces (Boubekeur & Alexa 2008, Sec. 3).
+constexpr double kPhongShape = 0.5;
+// A corner normal this close to the face's own leaves the face flat there (rounding of coplanar faces' normals).
+constexpr double kFlatCosine = 1.0 - 1e-9;
+
+const Eigen::Vector3d& vertex(const Mesh& mesh, std::int32_t i) { return mesh.vertices[static_cast<std::size_t>(i)]; }
+
+// |ab x ac| times the unit normal of each face (zero for a face without area).
+std::vector<Eigen::Vector3d> scaled_face_normals(const Mesh& mesh) {
+  std::vector<Eigen::Vector3d> out(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    const Eigen::Vector3d& a = vertex(mesh, face[0]);
+    out[f] = (vertex(mesh, face[1]) - a).cross(vertex(mesh, face[2]) - a);
+    if (!out[f].allFinite()) out[f].setZero();
+  }
+  return out;
+}
+
+// The interior angle of face f at its k-th corner, rad.
+double corner_angle(const Mesh& mesh, const Face& face, int k) {
+  const Eigen::Vector3d& p = vertex(mesh, face[static_cast<std::size_t>(k)]);
+  const Eigen::Vector3d u = vertex(mesh, face[static_cast<std::size_t>((k + 1) % 3)]) - p;
+  const Eigen::Vector3d v = vertex(mesh, face[static_cast<std::size_t>((k + 2) % 3)]) - p;
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
+  const double length = n.norm();
+  return length > 0.0 && std::isfinite(length) ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+}
+
+void check_faces(const Mesh& mesh) {
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::int32_t i : mesh.faces[f]) {
+      if (i < 0 || static_cast<std::size_t>(i) >= mesh.vertices.size()) {
+        throw Error("smooth surface: face " + std::to_string(f) + " has vertex index " + std::to_string(i) +
+                    " out of range");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& normals,
+                                           double crease_angle_rad) {
+  const double crease_cosine = std::cos(crease_angle_rad);
+  const std::size_t n = mesh.vertices.size();
+  // Each vertex's faces (compressed rows) with their unit normals; faces without area say nothing about the shape.
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const Face& f : mesh.faces) {
+    for (std::int32_t i : f) ++start[static_cast<std::size_t>(i) + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<Eigen::Vector3d> around(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const Face& f : mesh.faces) {
+    const Eigen::Vector3d& a = vertex(mesh, f[0]);
+    const Eigen::Vector3d u = unit_or_zero((vertex(mesh, f[1]) - a).cross(vertex(mesh, f[2]) - a));
+    for (std::int32_t i : f) around[fill[static_cast<std::size_t>(i)]++] = u;
+  }
+  std::vector<unsigned char> smooth(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    bool ok = start[v + 1] > start[v];
+    // Every face within the crease angle of the vertex normal and of every other face (a 45 deg chamfer is a crease
+    // even though the averaged normal is 22.5 deg from both sides).
+    for (std::size_t j = start[v]; ok && j < start[v + 1]; ++j) {
+      if (around[j].isZero()) continue;
+      ok = std::abs(normals[v].dot(around[j])) >= crease_cosine;
+      for (std::size_t k = j + 1; ok && k < start[v + 1]; ++k) {
+        ok = around[k].isZero() || std::abs(around[j].dot(around[k])) >= crease_cosine;
+      }
+    }
+    smooth[v] = ok ? 1 : 0;
+  }
+  return smooth;
+}
+
+PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normals,
+                           double crease_angle_rad)
+    : vertices_(mesh.vertices), faces_(mesh.faces) {
+  check_faces(mesh);
+  const std::size_t n = mesh.vertices.size();
+  if (!vertex_normals.empty() && vertex_normals.size() != n) {
+    throw Error("smooth surface: " + std::to_string(vertex_normals.size()) + " normals for " + std::to_string(n) +
+                " vertices");
+  }
+  const std::vector<Eigen::Vector3d> face_normals = scaled_face_normals(mesh);
+  std::vector<std::array<double, 3>> angles(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) angles[f][static_cast<std::size_t>(k)] = corner_angle(mesh, mesh.faces[f], k);
+  }
+  normals_ = vertex_normals;
+  for (Eigen::Vector3d& v : normals_) v = unit_or_zero(v);
+  if (normals_.empty()) {
+    normals_.assign(n, Eigen::Vector3d::Zero());
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const Eigen::Vector3d u = unit_or_zero(face_normals[f]);
+      for (int k = 0; k < 3; ++k) {
+        normals_[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])] +=
+            angles[f][static_cast<std::size_t>(k)] * u;
+      }
+    }
+    for (Eigen::Vector3d& v : normals_) v = unit_or_zero(v);
+  }
+  smooth_ = smooth_vertices(mesh, normals_, crease_angle_rad);
+
+  // The faces around each vertex that is not smooth (compressed rows).
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const Face& face : mesh.faces) {
+    for (std::int32_t i : face) start[static_cast<std::size_t>(i) + 1] += smooth_[static_cast<std::size_t>(i)] ? 0 : 1;
+  }
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::size_t> around(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::int32_t i : mesh.faces[f]) {
+      if (!smooth_[static_cast<std::size_t>(i)]) around[fill[static_cast<std::size_t>(i)]++] = f;
+    }
+  }
+
+  const double crease_cosine = std::cos(crease_angle_rad);
+  corners_.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Eigen::Vector3d own = unit_or_zero(face_normals[f]);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t v = mesh.faces[f][static_cast<std::size_t>(k)];
+      const auto vu = static_cast<std::size_t>(v);
+      corners_[f][static_cast<std::size_t>(k)] = v;
+      if (smooth_[vu]) continue;
+      // The faces on this face's side of the crease, angle-weighted.
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (std::size_t j = start[vu]; j < start[vu + 1]; ++j) {
+        const std::size_t g = around[j];
+        const Eigen::Vector3d other = unit_or_zero(face_normals[g]);
+        if (other.dot(own) < crease_cosine) continue;
+        const Face& gf = mesh.faces[g];
+        const int corner = gf[0] == v ? 0 : gf[1] == v ? 1 : 2;
+        sum += angles[g][static_cast<std::size_t>(corner)] * other;
+      }
+      corners_[f][static_cast<std::size_t>(k)] = static_cast<std::int32_t>(normals_.size());
+      normals_.push_back(unit_or_zero(sum));
+    }
+  }
+}
+
+// Eq. (2)-(3), Boubekeur & Alexa 2008, shape factor 1/2: s moves by half the barycentric mean of its offsets to the
+// tangent planes of the face's corners, and the normal is the barycentric mean of theirs.
+PhongPoint PhongSurface::lift(const SurfacePoint& s) const {
+  PhongPoint out;
+  out.point = s.point;
+  const auto f = static_cast<std::size_t>(s.face);
+  const Face& face = faces_[f];
+  const Eigen::Vector3d& a = vertices_[static_cast<std::size_t>(face[0])];
+  Eigen::Vector3d face_normal =
+      (vertices_[static_cast<std::size_t>(face[1])] - a).cross(vertices_[static_cast<std::size_t>(face[2])] - a);
+  const double area2 = face_normal.norm();
+  if (!(area2 > 0.0 && std::isfinite(area2))) return out;
+  face_normal /= area2;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& corner = corner_normal(f, k);
+    const double cosine = corner.dot(face_normal);
+    if (corner.isZero()) {
+      normal += s.barycentric[k] * face_normal;
+      continue;
+    }
+    const Eigen::Vector3d n = cosine < 0.0 ? Eigen::Vector3d(-corner) : corner;
+    out.lifted = out.lifted || std::abs(cosine) < kFlatCosine;
+    offset += s.barycentric[k] * (s.point - vertices_[static_cast<std::size_t>(face[static_cast<std::size_t>(k)])])
+                                     .dot(n) * n;
+    normal += s.barycentric[k] * n;
+  }
+  out.normal = unit_or_zero(normal);
+  if (out.normal.isZero()) {
+    out.lifted = false;
+    return out;
+  }
+  out.point = s.point - kPhongShape * offset;
+  return out;
+}
+
+}  // namespace conform
