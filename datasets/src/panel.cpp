@@ -6,7 +6,7 @@
 
 #include "conform/core/error.h"
 #include "conform/datasets/panel_shape.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 
 namespace conform {
 namespace {

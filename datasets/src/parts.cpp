@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "conform/core/error.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 
 namespace conform {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "conform/core/error.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 
 namespace conform {
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <numeric>
 
-#include "seeded_random.h"
+#include "conform/core/random.h"
 
 namespace conform::detail {
 namespace {
@@ -36,7 +36,7 @@ bool hypothesis(const Eigen::Vector3d& p1, const Eigen::Vector3d& n1, const Eige
 }
 
 // The seeded subset the hypotheses are drawn from and scored on: a partial Fisher-Yates shuffle of the indices.
-std::vector<int> seeded_subset(std::size_t n, int count, SeededRandom& random) {
+std::vector<int> seeded_subset(std::size_t n, int count, Random& random) {
   std::vector<int> all(n);
   std::iota(all.begin(), all.end(), 0);
   const std::size_t m = std::min<std::size_t>(n, static_cast<std::size_t>(count));
@@ -94,7 +94,7 @@ bool agrees(const Cylinder& model, const Eigen::Vector3d& p, const Eigen::Vector
 
 RansacOutcome ransac_cylinder(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
                               const RansacSettings& s) {
-  SeededRandom random(s.seed);
+  Random random(s.seed);
   const std::vector<int> subset = seeded_subset(points.size(), s.sample_points, random);
   RansacOutcome out;
   double best_cost = std::numeric_limits<double>::infinity();

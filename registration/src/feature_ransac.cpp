@@ -6,8 +6,8 @@
 
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
+#include "conform/core/random.h"
 #include "conform/registration/horn.h"
-#include "seeded_random.h"
 
 namespace conform {
 
@@ -115,9 +115,8 @@ struct BlockResult {
 };
 
 BlockResult run_block(const Context& c, std::uint64_t block, int count) {
-  // One generator per block, its state from the seed and the block's index (SplitMix64 decorrelates neighbours).
-  detail::SeededRandom seeder(c.options.seed);
-  detail::SeededRandom random(seeder.next_u64() + block * 0x632be59bd9b4e019ull);
+  // One stream per block, from the seed and the block's index: the same draws whatever the thread count.
+  Random random(c.options.seed, block);
   BlockResult out;
   const std::uint64_t n = c.matches.size();
   for (int i = 0; i < count; ++i) {

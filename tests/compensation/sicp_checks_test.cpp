@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/error.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 #include "conform/registration/surface_noise.h"
 
 namespace conform {

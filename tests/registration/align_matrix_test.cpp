@@ -25,7 +25,7 @@
 #include "boss_plate.h"
 #include "ribbed_boss_plate.h"
 #include "conform/core/io.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/datasets/workpiece.h"
 #include "conform/pipelines/align.h"

@@ -9,7 +9,7 @@
 
 #include "conform/core/cloud.h"
 #include "conform/core/error.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/datasets/tube.h"
 #include "conform/registration/degeneracy.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "conform/core/error.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 #include "conform/registration/feature_ransac.h"
 #include "registration_test_util.h"
 

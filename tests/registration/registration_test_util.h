@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "conform/core/mesh.h"
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 
 namespace conform::test {
 

@@ -1,4 +1,4 @@
-#include "conform/datasets/random.h"
+#include "conform/core/random.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The one source of randomness of the generators: a seeded xoshiro256** stream with its own uniform and normal
+// The one source of randomness (generators, RANSAC, sampling): a seeded xoshiro256** stream with its own uniform and normal
 // draws, so that the same seed gives the same numbers with every compiler and standard library
 // (std::normal_distribution and friends are implementation-defined).
 
