@@ -10,6 +10,8 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/profile.h"
 #include "conform/pipelines/profile_json.h"
+#include "conform/pipelines/profile_report.h"
+#include "conform/report/html.h"
 #include "number_list.h"
 #include "terminal.h"
 
@@ -59,12 +61,13 @@ class ProfileCommand : public Command {
     c.add_option("--noise", noise_mm_, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
     c.add_option("--out", out_,
                  "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
+    c.add_option("--report", report_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({edge_, features_, second_edge_});
-    files.add_output(out_);
+    files.add_outputs({out_, report_});
   }
 
   int run() override {
@@ -73,6 +76,7 @@ class ProfileCommand : public Command {
     options.features_path = features_;
     options.second_edge_path = second_edge_;
     options.out_path = out_;
+    options.keep_inputs = !report_.empty();
     ProfileCompensationOptions& c = options.compensation;
     parse_profile_edge_model(model_, &c.edge.model);
     const Eigen::Vector3d z = parse_web_normal(web_normal_);
@@ -90,6 +94,11 @@ class ProfileCommand : public Command {
       print_json(profile_json(options, result));
     } else {
       print_text(result);
+    }
+    if (!report_.empty()) {
+      html::Page page = profile_report(options, result);
+      page.date = html::utc_now_text();
+      html::write_html(report_, page);
     }
     for (const std::string& w : result.compensation.warnings) warn("profile: " + w);
     if (!result.compensation.ok) {
@@ -146,6 +155,7 @@ class ProfileCommand : public Command {
   double max_gap_mm_ = 50.0;
   double noise_mm_ = 0.0;
   std::string out_;
+  std::string report_;
   bool json_ = false;
 };
 

@@ -10,6 +10,46 @@ namespace {
 
 constexpr double kDegPerRad = 57.29577951308232;
 
+using html::count;
+using html::number;
+
+html::Table figures_table(const SaddleJobResult& job, const SaddleReportFigures& f) {
+  const SaddleResult& s = job.saddle;
+  html::Table t{"Interpolation", {"figure", "value"}, {}};
+  t.rows.push_back({"interpolation", {to_string(s.rule), "/interpolation"}});
+  t.rows.push_back({"points", count(s.points.size(), "/points")});
+  t.rows.push_back({"step min (mm)", number(s.step_mm_min, 6, "/step_mm_min")});
+  t.rows.push_back({"step mean (mm)", number(s.step_mm_mean, 6, "/step_mm_mean")});
+  t.rows.push_back({"step max (mm)", number(s.step_mm_max, 6, "/step_mm_max")});
+  t.rows.push_back({"last step (mm)", number(s.last_step_mm, 6, "/last_step_mm")});
+  t.rows.push_back({"speed ripple (%)", number(s.speed_ripple_pct, 6, "/speed_ripple_pct")});
+  t.rows.push_back({"path length (mm)", number(s.path_length_mm, 6, "/path_length_mm")});
+  t.rows.push_back({"seam length (mm)", number(s.curve_length_mm, 6, "/curve_length_mm")});
+  t.rows.push_back({"pose min (deg)", number(s.pose_rad_min * kDegPerRad, 4, "/pose_deg_min")});
+  t.rows.push_back({"pose max (deg)", number(s.pose_rad_max * kDegPerRad, 4, "/pose_deg_max")});
+  t.rows.push_back({"off the pipe, max (mm)", html::number_g(s.max_pipe_residual_mm, 3, "/max_pipe_residual_mm")});
+  t.rows.push_back(
+      {"off the cylinder, max (mm)", html::number_g(s.max_leg_residual_mm, 3, "/max_cylinder_residual_mm")});
+  t.rows.push_back({"path vs closed form, max (mm)", html::number_g(f.max_position_error_mm, 3)});
+  t.rows.push_back({"pose vs closed form, max (deg)", html::number_g(f.max_pose_error_deg, 3)});
+  return t;
+}
+
+std::vector<html::Plot> plots(const SaddleReportFigures& f) {
+  html::Plot z{"Height of the seam along the pipe axis: path and closed form (Eq. 7)", "theta (deg)", "z (mm)"};
+  z.series = {{"closed form", f.theta_deg, f.closed_z_mm, html::kGrey},
+              {"path", f.theta_deg, f.z_mm, html::kBlue, f.theta_deg.size() <= 400}};
+  html::Plot pose{"Torch pose angle: path and closed form (Eq. 12)", "theta (deg)", "pose (deg)"};
+  pose.series = {{"closed form", f.theta_deg, f.closed_pose_deg, html::kGrey},
+                 {"path", f.theta_deg, f.pose_deg, html::kOrange, f.theta_deg.size() <= 400}};
+  html::Plot step{"Step length", "theta (deg)", "3D step from the previous point (mm)"};
+  // The first point has no step: start the line at the second.
+  const std::vector<double> x(f.theta_deg.begin() + (f.theta_deg.empty() ? 0 : 1), f.theta_deg.end());
+  const std::vector<double> y(f.step_mm.begin() + (f.step_mm.empty() ? 0 : 1), f.step_mm.end());
+  step.series = {{"step", x, y, html::kGreen}};
+  return {z, pose, step};
+}
+
 }  // namespace
 
 Eigen::Vector3d saddle_torch_direction(double theta_rad, double pose_rad) {
@@ -43,6 +83,32 @@ SaddleReportFigures saddle_report_figures(const SaddleJobOptions& options, const
     f.torch.directions.push_back(saddle_torch_direction(points[i].theta_rad, points[i].pose_rad));
   }
   return f;
+}
+
+html::Page saddle_report(const SaddleRequest& request, const SaddleJobOptions& options, const SaddleJobResult& job) {
+  html::Page page;
+  page.job = "saddle";
+  const nlohmann::json j = saddle_json(request, job);
+  page.options = {{"R_mm", request.leg_radius_mm},         {"r_mm", request.pipe_radius_mm},
+                  {"pitch_deg", request.pitch_deg},         {"offset_mm", request.offset_mm},
+                  {"right_angle_pose_deg", request.right_angle_pose_deg}, {"step_deg", j["step_deg"]},
+                  {"speed_mm_per_s", j["speed_mm_per_s"]}, {"period_s", j["period_s"]}};
+  const SaddleResult& s = job.saddle;
+  page.verdict = s.converged ? html::Verdict{html::Level::kOk, "converged: " + std::to_string(s.points.size()) +
+                                                                   " points, " + to_string(s.rule)}
+                             : html::Verdict{html::Level::kFail, s.termination + "; no file written"};
+  page.result = j;
+  const SaddleReportFigures f = saddle_report_figures(options, job);
+  page.scene.add_polyline("seam path", f.path, html::kBlue);
+  // Torch glyphs a quarter of the pipe radius long.
+  page.scene.add_arrows("torch", f.torch.origins, f.torch.directions, request.pipe_radius_mm / 4.0, html::kOrange);
+  page.sections.push_back({"Figures",
+                           {"Paper frame P (Xue et al. 2018, Fig. 2): z along the pipe axis away from the cylinder, y "
+                            "towards the toe. Torch glyphs: from the seam towards the torch, at the pose angle from the "
+                            "pipe axis in the plane of the axis and the pipe's normal."},
+                           {figures_table(job, f)},
+                           plots(f)});
+  return page;
 }
 
 }  // namespace conform

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "conform/pipelines/weld_layers_json.h"
 
 namespace conform {
 namespace {
@@ -39,7 +43,106 @@ void add_surface(const WeldLayersJobResult& job, std::size_t max_nodes, WeldLaye
   }
 }
 
+using html::count;
+using html::number;
+
+// Distinct colours for layers 1, 2, ... (cycled).
+const html::Rgb kLayerColours[] = {html::kBlue, html::kOrange, html::kGreen, html::kPurple, html::kRed,
+                                   html::kDarkGrey};
+
+nlohmann::json options_json(const WeldLayersJobOptions& o) {
+  return {{"bead_spacing_mm", o.weld.bead_spacing_mm},
+          {"layer_height_mm", o.weld.layer_height_mm},
+          {"chord_error_mm", o.weld.chord_error_mm},
+          {"torch_distance_mm", o.weld.torch_distance_mm},
+          {"layers", o.weld.layers},
+          {"depth_threshold_mm", o.weld.depth_threshold_mm},
+          {"outward", o.weld.outward_side},
+          {"bias", to_string(o.weld.bias)},
+          {"min_coverage_pct", o.weld.min_coverage_pct},
+          {"min_crater_coverage_pct", o.weld.min_crater_coverage_pct},
+          {"reference", o.reference_path.empty() ? "coons patch of the eroded border" : o.reference_path}};
+}
+
+html::Table damage_table(const WeldLayerResult& w) {
+  html::Table t{"Damage", {"figure", "value"}, {}};
+  t.rows.push_back({"noise (mm)", number(w.noise_mm, 4, "/noise_mm")});
+  t.rows.push_back({"depth threshold (mm)", number(w.depth_threshold_mm, 4, "/depth_threshold_mm")});
+  t.rows.push_back({"max depth (mm)", number(w.max_depth_mm, 4, "/max_depth_mm")});
+  t.rows.push_back({"bias offset (mm)", number(w.damage.bias_offset_mm, 4, "/bias/offset_mm")});
+  t.rows.push_back({"bias tilt (deg)", number(w.damage.bias_tilt_deg, 4, "/bias/tilt_deg")});
+  t.rows.push_back({"rims", count(w.rims.size())});
+  t.rows.push_back({"damage covered by layer 1 (%)", number(w.damage_coverage_pct, 2, "/damage_coverage_pct")});
+  t.rows.push_back({"paths", count(w.paths.size(), "/paths")});
+  t.rows.push_back({"total length (mm)", number(w.total_length_mm, 3, "/total_length_mm")});
+  t.rows.push_back({"spacing error max (%)", number(w.spacing_error_pct_max, 4, "/spacing_error_pct_max")});
+  t.rows.push_back({"chord error max (mm)", number(w.chord_error_mm_max, 6, "/chord_error_mm_max")});
+  return t;
+}
+
+html::Table crater_table(const DamageMap& d) {
+  html::Table t{"Craters", {"crater", "depth (mm)", "area (mm^2)", "volume (mm^3)", "deepest at (mm)", "at the border"},
+                {}};
+  for (std::size_t k = 0; k < d.regions.size(); ++k) {
+    const DamageRegion& r = d.regions[k];
+    const std::string at = "/craters/" + std::to_string(k) + "/";
+    char where[96];
+    std::snprintf(where, sizeof where, "%.1f, %.1f, %.1f", r.deepest.x(), r.deepest.y(), r.deepest.z());
+    t.rows.push_back({count(static_cast<std::size_t>(r.id), at + "id"), number(r.max_depth_mm, 3, at + "max_depth_mm"),
+                      number(r.area_mm2, 1, at + "area_mm2"), number(r.volume_mm3, 1, at + "volume_mm3"), where,
+                      r.at_border ? "yes" : "no"});
+  }
+  return t;
+}
+
+html::Table layer_table(const WeldLayersReportFigures& f) {
+  html::Table t{"Layers", {"layer", "paths", "length (mm)", "coverage (%)"}, {}};
+  for (std::size_t k = 0; k < f.layers.size(); ++k) {
+    const WeldLayerFigure& l = f.layers[k];
+    t.rows.push_back({count(static_cast<std::size_t>(l.layer)),
+                      count(l.paths.size(), "/paths_per_layer/" + std::to_string(k)), number(l.length_mm, 3),
+                      number(l.coverage_pct, 2, "/coverage_pct_by_layer/" + std::to_string(k))});
+  }
+  return t;
+}
+
+html::Plot coverage_plot(const WeldLayersReportFigures& f, double min_coverage_pct) {
+  html::Plot p{"Coverage by layer", "layer", "coverage (%)"};
+  html::Series s{"coverage", {}, {}, html::kBlue, true};
+  for (const WeldLayerFigure& l : f.layers) s.x.push_back(l.layer), s.y.push_back(l.coverage_pct);
+  p.series.push_back(s);
+  p.y_band = html::Band{min_coverage_pct, 100.0, "at least --min-coverage"};
+  return p;
+}
+
+void add_scene(const WeldLayersReportFigures& f, const WeldLayerResult& w, html::Scene* scene) {
+  if (!f.surface.faces.empty()) {
+    const double threshold = w.depth_threshold_mm;
+    const double deepest = std::max(w.max_depth_mm, threshold + 1e-3);
+    std::vector<html::Rgb> colours;
+    for (const double d : f.depth_mm) colours.push_back(depth_colour(d, threshold, deepest));
+    scene->add_mesh("eroded surface", f.surface.vertices, f.surface.faces, html::kGrey, 1.0, colours);
+    scene->set_colour_bar(html::make_colour_bar("depth below the reference (mm)", "grey above the threshold, "
+                                                "yellow to dark red", 0.0, deepest,
+                                                [&](double d) { return depth_colour(d, threshold, deepest); }));
+  }
+  for (std::size_t k = 0; k < f.rims.size(); ++k) {
+    scene->add_polyline("rim " + std::to_string(k + 1), f.rims[k], html::kRed);
+  }
+  for (const WeldLayerFigure& l : f.layers) {
+    add_lines(scene, "layer " + std::to_string(l.layer), l.paths, kLayerColours[(l.layer - 1) % 6]);
+  }
+}
+
 }  // namespace
+
+html::Rgb depth_colour(double depth_mm, double threshold_mm, double max_depth_mm) {
+  if (!(depth_mm > threshold_mm)) return {215, 215, 215};
+  const double u = std::min(1.0, (depth_mm - threshold_mm) / std::max(1e-12, max_depth_mm - threshold_mm));
+  // yellow (255, 220, 0) -> dark red (150, 0, 0)
+  const auto mix = [u](double a, double b) { return static_cast<std::uint8_t>(std::lround(a + (b - a) * u)); };
+  return {mix(255, 150), mix(220, 0), 0};
+}
 
 WeldLayersReportFigures weld_layers_report_figures(const WeldLayersJobResult& job, std::size_t max_nodes) {
   WeldLayersReportFigures f;
@@ -64,6 +167,35 @@ WeldLayersReportFigures weld_layers_report_figures(const WeldLayersJobResult& jo
     layer.length_mm += p.length_mm();
   }
   return f;
+}
+
+html::Page weld_layers_report(const WeldLayersJobOptions& options, const WeldLayersJobResult& job) {
+  const WeldLayerResult& w = job.weld;
+  html::Page page;
+  page.job = "weld-layers";
+  page.inputs = {{options.eroded_path, std::to_string(job.eroded_rows) + " x " + std::to_string(job.eroded_cols) +
+                                           " grid"}};
+  if (!options.reference_path.empty()) {
+    page.inputs.push_back({options.reference_path, std::to_string(job.reference_rows) + " x " +
+                                                       std::to_string(job.reference_cols) + " grid"});
+  }
+  page.options = options_json(options);
+  page.verdict = w.ok ? html::Verdict{w.warnings.empty() ? html::Level::kOk : html::Level::kCheck,
+                                      std::to_string(w.layers) + " layers, " + std::to_string(w.paths.size()) +
+                                          " paths; damage covered " + std::to_string(std::lround(w.damage_coverage_pct)) +
+                                          " % by layer 1"}
+                      : html::Verdict{html::Level::kFail, w.termination + "; no file written"};
+  page.warnings = w.warnings;
+  page.result = weld_layers_json(options, job);
+  const WeldLayersReportFigures f = weld_layers_report_figures(job);
+  add_scene(f, w, &page.scene);
+  html::Section figures{"Figures", {}, {damage_table(w), crater_table(w.damage)}, {}};
+  if (!f.layers.empty()) {
+    figures.tables.push_back(layer_table(f));
+    figures.plots.push_back(coverage_plot(f, options.weld.min_coverage_pct));
+  }
+  page.sections.push_back(figures);
+  return page;
 }
 
 }  // namespace conform

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "conform/pipelines/profile.h"
+#include "conform/report/page.h"
 
 namespace conform {
 
@@ -50,5 +51,10 @@ struct ProfileReportFigures {
 };
 
 ProfileReportFigures profile_report_figures(const ProfileJobResult& job);
+
+// The page: header (inputs, options, verdict: ok, or the termination), the 3D view (edge points with a run with
+// keep_inputs), the edge fit's figures and the per-feature table (cells tied to profile_json), the displacement
+// along the profile. Page::date is left to the caller.
+html::Page profile_report(const ProfileJobOptions& options, const ProfileJobResult& job);
 
 }  // namespace conform

@@ -13,6 +13,8 @@
 
 #include "conform/pipelines/report_figures.h"
 #include "conform/pipelines/saddle.h"
+#include "conform/pipelines/saddle_json.h"
+#include "conform/report/page.h"
 
 namespace conform {
 
@@ -34,5 +36,10 @@ struct SaddleReportFigures {
 Eigen::Vector3d saddle_torch_direction(double theta_rad, double pose_rad);
 
 SaddleReportFigures saddle_report_figures(const SaddleJobOptions& options, const SaddleJobResult& job);
+
+// The page: header (the request as options, verdict: converged or why not), the seam and the torch in 3D, the
+// figures `conform saddle` prints (cells tied to saddle_json), the path against its closed form along theta.
+// Page::date is left to the caller.
+html::Page saddle_report(const SaddleRequest& request, const SaddleJobOptions& options, const SaddleJobResult& job);
 
 }  // namespace conform

@@ -11,6 +11,7 @@
 
 #include "conform/pipelines/report_figures.h"
 #include "conform/pipelines/sicp.h"
+#include "conform/report/page.h"
 
 namespace conform {
 
@@ -32,5 +33,10 @@ struct SicpReportFigures {
 // The figures of a run with keep_inputs (the contour and the nominal trajectory are empty without it).
 // min_confidence: the checks' threshold (SicpCheckOptions::min_confidence).
 SicpReportFigures sicp_report_figures(const SicpJobResult& result, double min_confidence);
+
+// The page: header (inputs, options, verdict: trusted, or why not), the 3D view (a run with keep_inputs), tables of
+// the figures `conform sicp` prints (cells tied to sicp_json), the per-row and per-segment plots. Page::date is left
+// to the caller.
+html::Page sicp_report(const SicpJobOptions& options, const SicpJobResult& result);
 
 }  // namespace conform

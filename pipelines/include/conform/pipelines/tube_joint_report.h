@@ -11,6 +11,7 @@
 #include "conform/core/mesh.h"
 #include "conform/pipelines/report_figures.h"
 #include "conform/pipelines/tube_joint.h"
+#include "conform/report/page.h"
 
 namespace conform {
 
@@ -31,5 +32,10 @@ struct TubeJointReportFigures {
 // standoffs: the run's (TubeJointJobOptions::solve.tools), the glyphs' lengths.
 TubeJointReportFigures tube_joint_report_figures(const TubeJointJobResult& job, double cut_standoff_mm,
                                                  double weld_standoff_mm);
+
+// The page: header (inputs, options, verdict: one closed seam and tools clear, or the failed condition, marked in the
+// 3D view where it failed), the meshes (a run with keep_inputs), path and tools, the figures `conform tube-joint`
+// prints (cells tied to tube_joint_json), the angles along the azimuth. Page::date is left to the caller.
+html::Page tube_joint_report(const TubeJointJobOptions& options, const TubeJointJobResult& job);
 
 }  // namespace conform

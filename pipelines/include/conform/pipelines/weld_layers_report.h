@@ -10,6 +10,7 @@
 
 #include "conform/core/mesh.h"
 #include "conform/pipelines/weld_layers.h"
+#include "conform/report/page.h"
 
 namespace conform {
 
@@ -34,5 +35,14 @@ struct WeldLayersReportFigures {
 // max_nodes: the surface's limit (every k-th row and column, and the last, so that about this many remain).
 WeldLayersReportFigures weld_layers_report_figures(const WeldLayersJobResult& job,
                                                    std::size_t max_nodes = kWeldLayersReportNodes);
+
+// The colour of a depth below the reference: light grey above the threshold (not damage), then a ramp from yellow to
+// dark red at max_depth_mm.
+html::Rgb depth_colour(double depth_mm, double threshold_mm, double max_depth_mm);
+
+// The page: header (inputs, options, verdict: ok, or the termination), the surface coloured by depth with its colour
+// bar, the rims and every layer's paths (a run with keep_inputs for the surface), the craters and the layers as
+// tables (cells tied to weld_layers_json), coverage and length by layer. Page::date is left to the caller.
+html::Page weld_layers_report(const WeldLayersJobOptions& options, const WeldLayersJobResult& job);
 
 }  // namespace conform
