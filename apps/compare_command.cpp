@@ -10,8 +10,8 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/compare.h"
 #include "conform/pipelines/compare_json.h"
-#include "deviation_colours.h"
-#include "deviation_histogram.h"
+#include "conform/report/deviation_colours.h"
+#include "conform/report/deviation_histogram.h"
 #include "terminal.h"
 
 namespace conform::app {

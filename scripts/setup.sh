@@ -17,6 +17,8 @@ shift || true
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libpcl-dev libceres-dev libopencv-dev
           libgtest-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev
           pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed  # python/ (docs/python.md)
+          libjs-three  # three.js, compiled into the HTML reports (report/, docs/report.md)
+          chromium  # the reports' browser test renders them headless (tests/apps/report_browser_test.cpp)
           # OpenCASCADE for STEP/IGES references (the cad plugin, LGPL-2.1 with exception, linked dynamically)
           libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev)
 missing=()

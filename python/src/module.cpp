@@ -15,8 +15,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "../../apps/deviation_colours.h"
-#include "../../apps/deviation_histogram.h"
+#include "conform/report/deviation_colours.h"
+#include "conform/report/deviation_histogram.h"
 #include "bindings.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
@@ -70,11 +70,11 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   options.tolerance_mm = tolerance;
   options.out_deviation_path = path_of(out_deviation);
   options.out_histogram_path = path_of(out_histogram);
-  options.colour = app::deviation_colour;
+  options.colour = deviation_colour;
   const std::string title = "Deviation of " + std::filesystem::path(options.scan_path).filename().string() + " from " +
                             std::filesystem::path(options.reference_path).filename().string();
   options.histogram = [title](const std::vector<double>& d, const DeviationStatistics& s) {
-    return app::deviation_histogram_png(d, s, title);
+    return deviation_histogram_png(d, s, title);
   };
   const Progress progress(progress_callback);
   options.progress = progress.function();

@@ -9,7 +9,7 @@
 
 #include "conform/evaluation/statistics.h"
 
-namespace conform::app {
+namespace conform {
 
 // PNG bytes (960 x 560 pixels, 8-bit colour). NaN values (unmatched points) are left out.
 std::string deviation_histogram_png(const std::vector<double>& deviation_mm, const DeviationStatistics& statistics,
@@ -18,4 +18,4 @@ std::string deviation_histogram_png(const std::vector<double>& deviation_mm, con
 inline constexpr int kHistogramWidth = 960;
 inline constexpr int kHistogramHeight = 560;
 
-}  // namespace conform::app
+}  // namespace conform

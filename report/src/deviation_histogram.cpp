@@ -1,4 +1,4 @@
-#include "deviation_histogram.h"
+#include "conform/report/deviation_histogram.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "deviation_colours.h"
-#include "png_writer.h"
+#include "conform/report/deviation_colours.h"
+#include "conform/report/png_writer.h"
 
-namespace conform::app {
+namespace conform {
 namespace {
 
 constexpr int kBins = 60;
@@ -157,4 +157,4 @@ std::string deviation_histogram_png(const std::vector<double>& deviation_mm, con
   return encode_png_bgr(img.ptr(), img.cols, img.rows, img.step[0]);
 }
 
-}  // namespace conform::app
+}  // namespace conform

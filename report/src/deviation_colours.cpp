@@ -1,9 +1,9 @@
-#include "deviation_colours.h"
+#include "conform/report/deviation_colours.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace conform::app {
+namespace conform {
 namespace {
 
 struct Stop {
@@ -51,4 +51,4 @@ Rgb deviation_colour(double d, const DeviationStatistics& s) {
   return d > 0.0 ? ramp(kAbove, u) : ramp(kBelow, u);
 }
 
-}  // namespace conform::app
+}  // namespace conform

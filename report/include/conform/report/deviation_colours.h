@@ -11,7 +11,7 @@
 
 #include "conform/evaluation/statistics.h"
 
-namespace conform::app {
+namespace conform {
 
 using Rgb = std::array<std::uint8_t, 3>;
 
@@ -19,4 +19,4 @@ using Rgb = std::array<std::uint8_t, 3>;
 double colour_scale_range_mm(const DeviationStatistics& statistics);
 Rgb deviation_colour(double deviation_mm, const DeviationStatistics& statistics);
 
-}  // namespace conform::app
+}  // namespace conform

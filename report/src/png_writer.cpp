@@ -1,4 +1,4 @@
-#include "png_writer.h"
+#include "conform/report/png_writer.h"
 
 #include <cstdint>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 
 #include <zlib.h>
 
-namespace conform::app {
+namespace conform {
 
 namespace {
 
@@ -54,4 +54,4 @@ std::string encode_png_bgr(const unsigned char* bgr, int width, int height, std:
   return png;
 }
 
-}  // namespace conform::app
+}  // namespace conform

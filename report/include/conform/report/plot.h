@@ -1,0 +1,53 @@
+#pragma once
+// The plots of a report, drawn as inline SVG by render_html (docs/report.md): bars (a histogram) or lines (y against
+// x, several series), with an optional shaded band across x (e.g. the tolerance +-t) or across y, and marker lines.
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "conform/report/scene.h"
+
+namespace conform::html {
+
+struct Series {
+  std::string name;  // the legend's label
+  std::vector<double> x;
+  std::vector<double> y;  // as many as x; NaN breaks the line
+  Rgb colour = kBlue;
+  bool dots = false;  // a dot at every point too
+};
+
+struct Bar {
+  double lo = 0.0;  // the bin [lo, hi)
+  double hi = 0.0;
+  double count = 0.0;
+  Rgb colour = kBlue;
+};
+
+struct Band {
+  double lo = 0.0;
+  double hi = 0.0;
+  std::string label;  // "tolerance +-0.1 mm"
+};
+
+struct Plot {
+  std::string title;
+  std::string x_label;  // with the unit: "deviation (mm)"
+  std::string y_label;
+  std::vector<Bar> bars;        // a histogram, or
+  std::vector<Series> series;   // lines
+  std::optional<Band> x_band;   // shaded between x = lo and hi
+  std::optional<Band> y_band;   // shaded between y = lo and hi
+  std::vector<double> x_marks;  // vertical lines (e.g. x = 0)
+  std::string note;             // one line under the plot ("12 points beyond the axis are in the end bars")
+};
+
+// A histogram of the finite `values` in `bins` (>= 1) equal bins over [lo, hi] (values outside go into the end bins,
+// and the note says how many); each bar coloured by `colour` of its centre (empty: kBlue). lo < hi.
+Plot histogram_plot(const std::vector<double>& values, std::size_t bins, double lo, double hi, std::string title,
+                    std::string x_label, const std::function<Rgb(double)>& colour = {});
+
+}  // namespace conform::html

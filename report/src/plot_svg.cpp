@@ -1,0 +1,203 @@
+// Plots as inline SVG: a fixed 720 x 300 canvas (scaled by CSS), axes with 1-2-5 ticks, bars or lines, bands, marks.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "report_detail.h"
+
+namespace conform::html::detail {
+namespace {
+
+constexpr double kWidth = 720, kHeight = 300;
+constexpr double kLeft = 70, kRight = 20, kTop = 34, kBottom = 52;
+
+std::string css(const Rgb& c) {
+  char text[16];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c[0], c[1], c[2]);
+  return text;
+}
+
+std::string num(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", v);
+  return text;
+}
+
+// A step of 1, 2 or 5 times a power of ten giving about `count` intervals over `span` (> 0).
+double nice_step(double span, int count) {
+  const double raw = span / count;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0}) {
+    if (m * power >= raw) return m * power;
+  }
+  return 10.0 * power;
+}
+
+struct Range {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  void pad() {
+    if (!(lo <= hi)) lo = 0.0, hi = 1.0;
+    if (hi - lo <= 0.0) {
+      const double d = std::max(std::abs(lo) * 0.05, 1e-9);
+      lo -= d, hi += d;
+    }
+  }
+};
+
+struct Frame {
+  Range x, y;
+  double px(double v) const { return kLeft + (v - x.lo) / (x.hi - x.lo) * (kWidth - kLeft - kRight); }
+  double py(double v) const { return kHeight - kBottom - (v - y.lo) / (y.hi - y.lo) * (kHeight - kTop - kBottom); }
+};
+
+Frame frame_of(const Plot& plot) {
+  Frame f;
+  for (const Bar& b : plot.bars) f.x.add(b.lo), f.x.add(b.hi), f.y.add(b.count);
+  if (!plot.bars.empty()) f.y.add(0.0);
+  for (const Series& s : plot.series) {
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) f.x.add(s.x[i]), f.y.add(s.y[i]);
+    }
+  }
+  if (plot.x_band) f.x.add(plot.x_band->lo), f.x.add(plot.x_band->hi);
+  if (plot.y_band) f.y.add(plot.y_band->lo), f.y.add(plot.y_band->hi);
+  f.x.pad();
+  f.y.pad();
+  const double ymargin = 0.06 * (f.y.hi - f.y.lo);
+  f.y.hi += ymargin;
+  if (plot.bars.empty()) f.y.lo -= ymargin;
+  return f;
+}
+
+void axes(std::string& out, const Frame& f, const Plot& plot) {
+  const double bottom = kHeight - kBottom, right = kWidth - kRight;
+  const double xs = nice_step(f.x.hi - f.x.lo, 8), ys = nice_step(f.y.hi - f.y.lo, 5);
+  for (double v = std::ceil(f.x.lo / xs) * xs; v <= f.x.hi + 1e-9 * xs; v += xs) {
+    const double shown = std::abs(v) < 0.5 * xs ? 0.0 : v;
+    out += "<line class=\"grid\" x1=\"" + num(f.px(v)) + "\" y1=\"" + num(kTop) + "\" x2=\"" + num(f.px(v)) +
+           "\" y2=\"" + num(bottom) + "\"/><text x=\"" + num(f.px(v)) + "\" y=\"" + num(bottom + 16) +
+           "\" text-anchor=\"middle\">" + format_g(shown, 6) + "</text>";
+  }
+  for (double v = std::ceil(f.y.lo / ys) * ys; v <= f.y.hi + 1e-9 * ys; v += ys) {
+    const double shown = std::abs(v) < 0.5 * ys ? 0.0 : v;
+    out += "<line class=\"grid\" x1=\"" + num(kLeft) + "\" y1=\"" + num(f.py(v)) + "\" x2=\"" + num(right) +
+           "\" y2=\"" + num(f.py(v)) + "\"/><text x=\"" + num(kLeft - 6) + "\" y=\"" + num(f.py(v) + 4) +
+           "\" text-anchor=\"end\">" + format_g(shown, 6) + "</text>";
+  }
+  out += "<rect class=\"frame\" x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" + num(right - kLeft) +
+         "\" height=\"" + num(bottom - kTop) + "\"/>";
+  out += "<text x=\"" + num((kLeft + right) / 2) + "\" y=\"" + num(kHeight - 14) + "\" text-anchor=\"middle\">" +
+         escape_html(plot.x_label) + "</text>";
+  out += "<text x=\"14\" y=\"" + num((kTop + bottom) / 2) + "\" text-anchor=\"middle\" transform=\"rotate(-90 14 " +
+         num((kTop + bottom) / 2) + ")\">" + escape_html(plot.y_label) + "</text>";
+  out += "<text class=\"title\" x=\"" + num(kWidth / 2) + "\" y=\"18\" text-anchor=\"middle\">" +
+         escape_html(plot.title) + "</text>";
+}
+
+void bands(std::string& out, const Frame& f, const Plot& plot) {
+  const double bottom = kHeight - kBottom, right = kWidth - kRight;
+  if (plot.x_band) {
+    const double a = std::clamp(f.px(plot.x_band->lo), kLeft, right), b = std::clamp(f.px(plot.x_band->hi), kLeft, right);
+    out += "<rect class=\"band\" x=\"" + num(a) + "\" y=\"" + num(kTop) + "\" width=\"" + num(b - a) + "\" height=\"" +
+           num(bottom - kTop) + "\"><title>" + escape_html(plot.x_band->label) + "</title></rect>";
+    out += "<text class=\"band-label\" x=\"" + num(b + 3) + "\" y=\"" + num(kTop + 12) + "\">" +
+           escape_html(plot.x_band->label) + "</text>";
+  }
+  if (plot.y_band) {
+    const double a = std::clamp(f.py(plot.y_band->hi), kTop, bottom), b = std::clamp(f.py(plot.y_band->lo), kTop, bottom);
+    out += "<rect class=\"band\" x=\"" + num(kLeft) + "\" y=\"" + num(a) + "\" width=\"" + num(right - kLeft) +
+           "\" height=\"" + num(b - a) + "\"><title>" + escape_html(plot.y_band->label) + "</title></rect>";
+    out += "<text class=\"band-label\" x=\"" + num(kLeft + 4) + "\" y=\"" + num(a - 3) + "\">" +
+           escape_html(plot.y_band->label) + "</text>";
+  }
+}
+
+void series(std::string& out, const Frame& f, const Plot& plot) {
+  double legend_y = kTop + 14;
+  for (const Series& s : plot.series) {
+    std::string path;
+    bool pen_down = false;
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+        pen_down = false;
+        continue;
+      }
+      path += (pen_down ? "L" : "M") + num(f.px(s.x[i])) + " " + num(f.py(s.y[i]));
+      pen_down = true;
+      if (s.dots) {
+        out += "<circle cx=\"" + num(f.px(s.x[i])) + "\" cy=\"" + num(f.py(s.y[i])) + "\" r=\"2\" fill=\"" +
+               css(s.colour) + "\"/>";
+      }
+    }
+    out += "<path class=\"line\" stroke=\"" + css(s.colour) + "\" d=\"" + path + "\"/>";
+    if (!s.name.empty()) {
+      const double x = kWidth - kRight - 150;
+      out += "<line x1=\"" + num(x) + "\" y1=\"" + num(legend_y - 4) + "\" x2=\"" + num(x + 18) + "\" y2=\"" +
+             num(legend_y - 4) + "\" stroke=\"" + css(s.colour) + "\" stroke-width=\"2\"/><text x=\"" + num(x + 22) +
+             "\" y=\"" + num(legend_y) + "\">" + escape_html(s.name) + "</text>";
+      legend_y += 15;
+    }
+  }
+}
+
+}  // namespace
+
+std::string plot_svg(const Plot& plot) {
+  const Frame f = frame_of(plot);
+  std::string out = "<svg class=\"plot\" viewBox=\"0 0 720 300\" role=\"img\">";
+  bands(out, f, plot);
+  axes(out, f, plot);
+  const double bottom = kHeight - kBottom;
+  for (const Bar& b : plot.bars) {
+    if (!(b.count > 0)) continue;
+    const double x0 = f.px(b.lo), x1 = f.px(b.hi), top = f.py(b.count);
+    out += "<rect x=\"" + num(x0 + 0.5) + "\" y=\"" + num(top) + "\" width=\"" + num(std::max(x1 - x0 - 1.0, 0.5)) +
+           "\" height=\"" + num(bottom - top) + "\" fill=\"" + css(b.colour) + "\"><title>[" + format_g(b.lo, 5) +
+           ", " + format_g(b.hi, 5) + "): " + format_g(b.count, 10) + "</title></rect>";
+  }
+  for (double m : plot.x_marks) {
+    if (m < f.x.lo || m > f.x.hi) continue;
+    out += "<line class=\"mark\" x1=\"" + num(f.px(m)) + "\" y1=\"" + num(kTop) + "\" x2=\"" + num(f.px(m)) +
+           "\" y2=\"" + num(bottom) + "\"/>";
+  }
+  series(out, f, plot);
+  out += "</svg>";
+  if (!plot.note.empty()) out += "<p class=\"note\">" + escape_html(plot.note) + "</p>";
+  return out;
+}
+
+std::string colour_bar_svg(const ColourBar& bar) {
+  // Vertical: max at the top. 90 x 260.
+  constexpr double x = 10, w = 22, top = 28, h = 210;
+  const double span = bar.max - bar.min > 0.0 ? bar.max - bar.min : 1.0;
+  const auto y = [&](double v) { return top + (bar.max - v) / span * h; };
+  std::string out = "<svg class=\"colour-bar\" viewBox=\"0 0 110 260\">";
+  out += "<defs><linearGradient id=\"cbar\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
+  for (const auto& [v, c] : bar.stops) {
+    out += "<stop offset=\"" + num((v - bar.min) / span) + "\" stop-color=\"" + css(c) + "\"/>";
+  }
+  out += "</linearGradient></defs>";
+  out += "<text x=\"4\" y=\"14\" class=\"title\">" + escape_html(bar.title) + "</text>";
+  out += "<rect x=\"" + num(x) + "\" y=\"" + num(top) + "\" width=\"" + num(w) + "\" height=\"" + num(h) +
+         "\" fill=\"url(#cbar)\" stroke=\"#444\"/>";
+  std::vector<double> labels = {bar.max, 0.5 * (bar.min + bar.max), bar.min};
+  if (bar.band) {
+    const double a = y(bar.band->second), b = y(bar.band->first);
+    out += "<rect x=\"" + num(x - 4) + "\" y=\"" + num(a) + "\" width=\"" + num(w + 8) + "\" height=\"" + num(b - a) +
+           "\" fill=\"none\" stroke=\"#000\" stroke-dasharray=\"3 2\"/>";
+    labels = {bar.max, bar.band->second, bar.band->first, bar.min};
+  }
+  for (double v : labels) {
+    out += "<text x=\"" + num(x + w + 6) + "\" y=\"" + num(y(v) + 4) + "\">" + format_g(v, 4) + "</text>";
+  }
+  out += "<text x=\"4\" y=\"254\" class=\"note\">" + escape_html(bar.map) + "</text></svg>";
+  return out;
+}
+
+}  // namespace conform::html::detail
