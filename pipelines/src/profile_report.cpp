@@ -5,6 +5,8 @@
 
 #include "conform/pipelines/profile_json.h"
 
+#include "report_pages.h"
+
 namespace conform {
 namespace {
 
@@ -115,8 +117,8 @@ html::Table feature_table(const ProfileReportFigures& f, const ProfileJobResult&
 }
 
 html::Plot displacement_plot(const ProfileReportFigures& f) {
-  html::Plot p{"Feature displacement along the profile", "Ty (mm)", "|mapped - nominal| (mm)"};
-  html::Series s{"displacement", {}, {}, html::kOrange, true};
+  html::Plot p = detail::line_plot("Feature displacement along the profile", "Ty (mm)", "|mapped - nominal| (mm)");
+  html::Series s = detail::series("displacement", {}, {}, html::kOrange, true);
   std::vector<std::pair<double, double>> points;
   for (const ProfileFeatureFigure& g : f.features) points.emplace_back(g.designed.y(), g.displacement_mm);
   std::sort(points.begin(), points.end());
@@ -129,9 +131,17 @@ void add_scene(const ProfileReportFigures& f, html::Scene* scene) {
   if (!f.edge.empty()) scene->add_points("edge points", f.edge, html::kGrey, 3.0);
   if (!f.second_edge.empty()) scene->add_points("second edge points", f.second_edge, html::kGrey, 3.0);
   scene->add_polyline("edge curve", f.edge_curve, html::kDarkGrey);
+  std::vector<std::vector<Eigen::Vector3d>> nominal, mapped;
+  std::vector<Eigen::Vector3d> nominal_points, mapped_points;  // features of one point (a mark)
   for (const ProfileFeatureFigure& g : f.features) {
-    scene->add_polyline(g.id + " nominal", g.nominal, html::kBlue);
-    scene->add_polyline(g.id + " mapped", g.mapped, html::kOrange);
+    if (g.nominal.size() > 1) nominal.push_back(g.nominal), mapped.push_back(g.mapped);
+    if (g.nominal.size() == 1) nominal_points.push_back(g.nominal[0]), mapped_points.push_back(g.mapped[0]);
+  }
+  scene->add_polylines("features, nominal (straight profile)", nominal, html::kBlue);
+  scene->add_polylines("features, mapped (deformed profile)", mapped, html::kOrange);
+  if (!nominal_points.empty()) {
+    scene->add_points("point features, nominal", nominal_points, html::kBlue, 6.0);
+    scene->add_points("point features, mapped", mapped_points, html::kOrange, 6.0);
   }
 }
 

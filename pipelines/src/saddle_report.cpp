@@ -5,6 +5,8 @@
 
 #include "conform/toolpath/saddle_curve.h"
 
+#include "report_pages.h"
+
 namespace conform {
 namespace {
 
@@ -36,17 +38,17 @@ html::Table figures_table(const SaddleJobResult& job, const SaddleReportFigures&
 }
 
 std::vector<html::Plot> plots(const SaddleReportFigures& f) {
-  html::Plot z{"Height of the seam along the pipe axis: path and closed form (Eq. 7)", "theta (deg)", "z (mm)"};
-  z.series = {{"closed form", f.theta_deg, f.closed_z_mm, html::kGrey},
-              {"path", f.theta_deg, f.z_mm, html::kBlue, f.theta_deg.size() <= 400}};
-  html::Plot pose{"Torch pose angle: path and closed form (Eq. 12)", "theta (deg)", "pose (deg)"};
-  pose.series = {{"closed form", f.theta_deg, f.closed_pose_deg, html::kGrey},
-                 {"path", f.theta_deg, f.pose_deg, html::kOrange, f.theta_deg.size() <= 400}};
-  html::Plot step{"Step length", "theta (deg)", "3D step from the previous point (mm)"};
+  html::Plot z = detail::line_plot("Height of the seam along the pipe axis: path and closed form (Eq. 7)", "theta (deg)", "z (mm)");
+  z.series = {detail::series("closed form", f.theta_deg, f.closed_z_mm, html::kGrey),
+              detail::series("path", f.theta_deg, f.z_mm, html::kBlue, f.theta_deg.size() <= 400)};
+  html::Plot pose = detail::line_plot("Torch pose angle: path and closed form (Eq. 12)", "theta (deg)", "pose (deg)");
+  pose.series = {detail::series("closed form", f.theta_deg, f.closed_pose_deg, html::kGrey),
+                 detail::series("path", f.theta_deg, f.pose_deg, html::kOrange, f.theta_deg.size() <= 400)};
+  html::Plot step = detail::line_plot("Step length", "theta (deg)", "3D step from the previous point (mm)");
   // The first point has no step: start the line at the second.
   const std::vector<double> x(f.theta_deg.begin() + (f.theta_deg.empty() ? 0 : 1), f.theta_deg.end());
   const std::vector<double> y(f.step_mm.begin() + (f.step_mm.empty() ? 0 : 1), f.step_mm.end());
-  step.series = {{"step", x, y, html::kGreen}};
+  step.series = {detail::series("step", x, y, html::kGreen)};
   return {z, pose, step};
 }
 

@@ -4,6 +4,8 @@
 
 #include "conform/pipelines/sicp_json.h"
 
+#include "report_pages.h"
+
 namespace conform {
 namespace {
 
@@ -84,20 +86,20 @@ html::Table segments_table(const SicpJobResult& r) {
 
 std::vector<html::Plot> plots(const SicpReportFigures& f, const SicpJobOptions& o, double noise_mm) {
   std::vector<html::Plot> out;
-  html::Plot correction{"Correction per row (compensated - nominal, in the row's frame)", "row", "correction (mm)"};
-  correction.series = {{"across the edge", f.row, f.across_mm, html::kBlue},
-                       {"along the tool axis", f.row, f.axis_mm, html::kOrange},
-                       {"along the path", f.row, f.along_mm, html::kGreen}};
+  html::Plot correction = detail::line_plot("Correction per row (compensated - nominal, in the row's frame)", "row", "correction (mm)");
+  correction.series = {detail::series("across the edge", f.row, f.across_mm, html::kBlue),
+                       detail::series("along the tool axis", f.row, f.axis_mm, html::kOrange),
+                       detail::series("along the path", f.row, f.along_mm, html::kGreen)};
   out.push_back(correction);
-  html::Plot confidence{"Confidence per row", "row", "confidence"};
-  confidence.series = {{"confidence", f.row, f.confidence, html::kPurple}};
-  confidence.y_band = html::Band{0.0, o.compensation.checks.min_confidence, "untrusted below this"};
+  html::Plot confidence = detail::line_plot("Confidence per row", "row", "confidence");
+  confidence.series = {detail::series("confidence", f.row, f.confidence, html::kPurple)};
+  confidence.y_band = detail::band(0.0, o.compensation.checks.min_confidence, "untrusted below this");
   out.push_back(confidence);
   if (!f.segment.empty()) {
-    html::Plot residual{"Residual per segment", "segment", "ICP residual RMS (mm)"};
-    residual.series = {{"RMS", f.segment, f.segment_rms_mm, html::kBlue, true}};
-    residual.y_band = html::Band{0.0, o.compensation.checks.outlier_ratio * noise_mm,
-                                 "within the outlier ratio x the scan noise"};
+    html::Plot residual = detail::line_plot("Residual per segment", "segment", "ICP residual RMS (mm)");
+    residual.series = {detail::series("RMS", f.segment, f.segment_rms_mm, html::kBlue, true)};
+    residual.y_band = detail::band(0.0, o.compensation.checks.outlier_ratio * noise_mm,
+                                 "within the outlier ratio x the scan noise");
     out.push_back(residual);
   }
   return out;

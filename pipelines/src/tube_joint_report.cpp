@@ -1,6 +1,10 @@
 #include "conform/pipelines/tube_joint_report.h"
 
+#include <cmath>
+
 #include "conform/pipelines/tube_joint_json.h"
+
+#include "report_pages.h"
 
 namespace conform {
 namespace {
@@ -9,6 +13,9 @@ using html::count;
 using html::number;
 
 constexpr double kDegPerRad = 57.29577951308232;
+
+// An option given in degrees, back from radians for the page: 30, not 29.999999999999996.
+double option_deg(double rad) { return std::round(rad * kDegPerRad * 1e9) / 1e9; }
 
 ReportGlyphs tool_glyphs(const std::vector<ToolPose>& poses) {
   std::vector<Eigen::Vector3d> at, direction;
@@ -19,13 +26,13 @@ ReportGlyphs tool_glyphs(const std::vector<ToolPose>& poses) {
 nlohmann::json options_json(const TubeJointJobOptions& o) {
   nlohmann::json j = {{"cut_standoff_mm", o.solve.tools.cut_standoff_mm},
                       {"weld_standoff_mm", o.solve.tools.weld_standoff_mm},
-                      {"weld_angle_deg", o.solve.tools.weld_angle_rad * kDegPerRad},
+                      {"weld_angle_deg", option_deg(o.solve.tools.weld_angle_rad)},
                       {"k_normals", o.solve.geometry.k_normals},
                       {"k_refine", o.solve.geometry.k_refine},
                       {"max_facet_error_mm", o.solve.max_facet_error_mm},
                       {"island_ratio", o.solve.max_island_ratio}};
   if (o.leg_pose_path.empty()) {
-    j["pitch_deg"] = o.spec.pitch_rad * kDegPerRad;
+    j["pitch_deg"] = option_deg(o.spec.pitch_rad);
     j["offset_mm"] = o.spec.offset_mm;
     j["protrusion_mm"] = o.spec.protrusion_mm;
   } else {
@@ -33,13 +40,13 @@ nlohmann::json options_json(const TubeJointJobOptions& o) {
   }
   if (o.solve.tools.groove_table_rad.empty()) {
     nlohmann::json groove = nlohmann::json::array();
-    for (const double a : o.solve.tools.groove_rad) groove.push_back(a * kDegPerRad);
+    for (const double a : o.solve.tools.groove_rad) groove.push_back(option_deg(a));
     j["groove_deg"] = groove;
   }
   if (o.solve.sampling.spacing == PathSpacing::kArcLength) {
     j["step_mm"] = o.solve.sampling.step_mm;
   } else {
-    j["step_deg"] = o.solve.sampling.step_rad * kDegPerRad;
+    j["step_deg"] = option_deg(o.solve.sampling.step_rad);
   }
   return j;
 }
@@ -77,10 +84,10 @@ html::Table figures_table(const TubeJointJobResult& job) {
 }
 
 html::Plot angle_plot(const TubeJointReportFigures& f) {
-  html::Plot p{"Angles along the seam", "stub azimuth phi (deg), from the toe", "angle (deg)"};
-  p.series = {{"dihedral psi", f.azimuth_deg, f.dihedral_deg, html::kBlue},
-              {"groove (bevel) alpha_c", f.azimuth_deg, f.groove_deg, html::kOrange},
-              {"weld torch alpha_w", f.azimuth_deg, f.weld_deg, html::kGreen}};
+  html::Plot p = detail::line_plot("Angles along the seam", "stub azimuth phi (deg), from the toe", "angle (deg)");
+  p.series = {detail::series("dihedral psi", f.azimuth_deg, f.dihedral_deg, html::kBlue),
+              detail::series("groove (bevel) alpha_c", f.azimuth_deg, f.groove_deg, html::kOrange),
+              detail::series("weld torch alpha_w", f.azimuth_deg, f.weld_deg, html::kGreen)};
   p.x_marks = {90.0, 180.0, 270.0};
   return p;
 }

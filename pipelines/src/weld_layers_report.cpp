@@ -7,6 +7,8 @@
 
 #include "conform/pipelines/weld_layers_json.h"
 
+#include "report_pages.h"
+
 namespace conform {
 namespace {
 
@@ -107,11 +109,11 @@ html::Table layer_table(const WeldLayersReportFigures& f) {
 }
 
 html::Plot coverage_plot(const WeldLayersReportFigures& f, double min_coverage_pct) {
-  html::Plot p{"Coverage by layer", "layer", "coverage (%)"};
-  html::Series s{"coverage", {}, {}, html::kBlue, true};
+  html::Plot p = detail::line_plot("Coverage by layer", "layer", "coverage (%)");
+  html::Series s = detail::series("coverage", {}, {}, html::kBlue, true);
   for (const WeldLayerFigure& l : f.layers) s.x.push_back(l.layer), s.y.push_back(l.coverage_pct);
   p.series.push_back(s);
-  p.y_band = html::Band{min_coverage_pct, 100.0, "at least --min-coverage"};
+  p.y_band = detail::band(min_coverage_pct, 100.0, "at least --min-coverage");
   return p;
 }
 
@@ -126,11 +128,9 @@ void add_scene(const WeldLayersReportFigures& f, const WeldLayerResult& w, html:
                                                 "yellow to dark red", 0.0, deepest,
                                                 [&](double d) { return depth_colour(d, threshold, deepest); }));
   }
-  for (std::size_t k = 0; k < f.rims.size(); ++k) {
-    scene->add_polyline("rim " + std::to_string(k + 1), f.rims[k], html::kRed);
-  }
+  if (!f.rims.empty()) scene->add_polylines("rims", f.rims, html::kRed);
   for (const WeldLayerFigure& l : f.layers) {
-    add_lines(scene, "layer " + std::to_string(l.layer), l.paths, kLayerColours[(l.layer - 1) % 6]);
+    scene->add_polylines("layer " + std::to_string(l.layer), l.paths, kLayerColours[(l.layer - 1) % 6]);
   }
 }
 

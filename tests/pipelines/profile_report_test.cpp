@@ -7,6 +7,7 @@
 
 #include "conform/pipelines/generate_profile.h"
 #include "temp_dir.h"
+#include "report_page_checks.h"
 
 namespace conform {
 namespace {
@@ -65,6 +66,26 @@ TEST(ProfileReport, AStraightProfileDisplacesNothing) {
   const ProfileReportFigures f = profile_report_figures(run(dir, 0.0));
   ASSERT_EQ(f.features.size(), 4u);
   for (const ProfileFeatureFigure& g : f.features) EXPECT_LT(g.max_displacement_mm, 0.5) << g.id;  // noise 0.1 mm
+}
+
+TEST(ProfileReport, PageDrawsTheFeaturesAndShowsItsJson) {
+  const test::TempDir dir;
+  const ProfileJobResult job = run(dir, 10.0);
+  ProfileJobOptions o;
+  o.edge_path = "p.csv";
+  o.features_path = "p.features.csv";
+  const html::Page page = profile_report(o, job);
+  EXPECT_EQ(page.verdict.level, html::Level::kOk);
+  EXPECT_GT(test::expect_cells_show_the_json(page), 20u);
+  const html::SceneObject* mapped = test::scene_object(page, "features, mapped (deformed profile)");
+  ASSERT_NE(mapped, nullptr);
+  std::size_t segments = 0;
+  for (const ProfileFeatureResult& f : job.compensation.features) segments += f.mapped.size() - 1;
+  EXPECT_EQ(mapped->positions.size(), 2 * segments);  // every outline as segment pairs
+  EXPECT_EQ(mapped->positions[1], job.compensation.features[0].mapped[1]);
+  const html::SceneObject* edge = test::scene_object(page, "edge points");
+  ASSERT_NE(edge, nullptr);
+  EXPECT_EQ(edge->positions.size(), job.edge_points);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/saddle_json.h"
+#include "report_page_checks.h"
 
 namespace conform {
 namespace {
@@ -60,6 +61,22 @@ TEST(SaddleReport, LongPathsAreThinnedToTheLimit) {
   EXPECT_NEAR(f.theta_deg.back(), 360.0, 1e-9);
   EXPECT_EQ(f.step_mm.size(), f.path.size());
   EXPECT_LE(f.torch.origins.size(), kSaddleReportGlyphs + 1);
+}
+
+TEST(SaddleReport, PageShowsTheJsonAndDrawsThePath) {
+  const SaddleRequest request = table1();
+  const SaddleJobOptions o = saddle_job_options(request);
+  const SaddleJobResult job = run_saddle(o);
+  const html::Page page = saddle_report(request, o, job);
+  EXPECT_EQ(page.verdict.level, html::Level::kOk);
+  EXPECT_EQ(page.result, saddle_json(request, job));
+  EXPECT_GE(test::expect_cells_show_the_json(page), 13u);
+  const html::SceneObject* path = test::scene_object(page, "seam path");
+  ASSERT_NE(path, nullptr);
+  ASSERT_EQ(path->positions.size(), 41u);
+  EXPECT_EQ(path->positions[20], job.saddle.points[20].position);
+  ASSERT_EQ(page.sections.size(), 1u);
+  EXPECT_EQ(page.sections[0].plots.size(), 3u);  // z and pose against the closed form, steps
 }
 
 }  // namespace

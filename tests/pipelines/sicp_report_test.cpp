@@ -9,14 +9,15 @@
 #include "conform/pipelines/generate_panel.h"
 #include "conform/pipelines/sicp_json.h"
 #include "temp_dir.h"
+#include "report_page_checks.h"
 
 namespace conform {
 namespace {
 
-struct Run {
+struct SharedRun {
   test::TempDir dir;
   SicpJobResult result;
-  Run() {
+  SharedRun() {
     GeneratePanelOptions g;
     g.panel.scan_points = 8000;
     g.panel.contour_spacing_mm = 2.0;
@@ -33,8 +34,8 @@ struct Run {
   }
 };
 
-const Run& shared_run() {
-  static const Run run;
+const SharedRun& shared_run() {
+  static const SharedRun run;
   return run;
 }
 
@@ -82,6 +83,36 @@ TEST(SicpReport, RowsBelowTheThresholdAreMarked) {
   const SicpJobResult& r = shared_run().result;
   const SicpReportFigures f = sicp_report_figures(r, 1.01);  // no row reaches it
   EXPECT_EQ(f.untrusted.size(), r.trajectory_rows);
+}
+
+TEST(SicpReport, PageDrawsTheResultAndShowsItsJson) {
+  const SharedRun& run = shared_run();
+  SicpJobOptions o;
+  o.contour_path = "p.contour.csv";
+  o.scan_path = "p.ply";
+  o.trajectory_path = "p.trajectory.csv";
+  const html::Page page = sicp_report(o, run.result);
+  EXPECT_EQ(page.job, "sicp");
+  EXPECT_EQ(page.verdict.level, html::Level::kOk);
+  EXPECT_EQ(page.result, sicp_json(run.result));
+  EXPECT_GT(test::expect_cells_show_the_json(page), 26u * 6u);  // the summary and every segment's row
+  const html::SceneObject* scan = test::scene_object(page, "scan");
+  ASSERT_NE(scan, nullptr);
+  EXPECT_EQ(scan->original_count, run.result.scan_points);
+  const html::SceneObject* path = test::scene_object(page, "compensated trajectory");
+  ASSERT_NE(path, nullptr);
+  EXPECT_EQ(path->positions, run.result.compensation.trajectory.points);
+  const html::SceneObject* normals = test::scene_object(page, "tool normals");
+  ASSERT_NE(normals, nullptr);
+  EXPECT_EQ(normals->kind, html::ObjectKind::kArrows);
+  EXPECT_EQ(normals->positions.size(), spread_indices(run.result.trajectory_rows, kSicpReportGlyphs).size());
+  // An untrusted run says why in the verdict.
+  SicpJobResult failed = run.result;
+  failed.compensation.trusted = false;
+  failed.compensation.check.reason = "3 rows without edge scan";
+  const html::Page bad = sicp_report(o, failed);
+  EXPECT_EQ(bad.verdict.level, html::Level::kFail);
+  EXPECT_NE(bad.verdict.text.find("3 rows without edge scan"), std::string::npos);
 }
 
 }  // namespace

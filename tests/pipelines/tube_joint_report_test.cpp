@@ -11,6 +11,7 @@
 #include "conform/pipelines/generate_tube_joint_json.h"
 #include "conform/pipelines/tube_joint_json.h"
 #include "temp_dir.h"
+#include "report_page_checks.h"
 
 namespace conform {
 namespace {
@@ -79,7 +80,23 @@ TEST(TubeJointReport, MeshesPathAndToolGlyphs) {
     EXPECT_NEAR(f.dihedral_deg[i], job.solution.tools.psi_rad[i] / kPi * 180.0, 1e-9);
   }
   EXPECT_EQ(tube_joint_json(job)["points"].get<std::size_t>(), frames.size());
+
+  // The page: both meshes, the seam, the tools; every tied number is the JSON's.
+  const html::Page page = tube_joint_report(options, job);
+  EXPECT_EQ(page.verdict.level, html::Level::kCheck);  // walls not checked
+  EXPECT_GT(test::expect_cells_show_the_json(page), 14u);
+  const html::SceneObject* leg = test::scene_object(page, "leg (outer surface)");
+  ASSERT_NE(leg, nullptr);
+  EXPECT_EQ(leg->triangles.size(), job.leg_faces);
+  const html::SceneObject* seam = test::scene_object(page, "seam path");
+  ASSERT_NE(seam, nullptr);
+  EXPECT_EQ(seam->positions, f.path);
+  const html::SceneObject* cut = test::scene_object(page, "cutting tool");
+  ASSERT_NE(cut, nullptr);
+  EXPECT_EQ(cut->length_mm, 10.0);  // the standoff
+  EXPECT_EQ(page.options["groove_deg"][0].get<double>(), 30.0);
 }
+
 
 }  // namespace
 }  // namespace conform

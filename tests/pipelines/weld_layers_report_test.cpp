@@ -10,14 +10,15 @@
 
 #include "conform/pipelines/generate_eroded.h"
 #include "temp_dir.h"
+#include "report_page_checks.h"
 
 namespace conform {
 namespace {
 
-struct Run {
+struct SharedRun {
   test::TempDir dir;
   WeldLayersJobResult job;
-  Run() {
+  SharedRun() {
     GenerateErodedOptions g;
     g.eroded.rows = 21;
     g.eroded.cols = 31;
@@ -39,8 +40,8 @@ struct Run {
   }
 };
 
-const Run& shared_run() {
-  static const Run run;
+const SharedRun& shared_run() {
+  static const SharedRun run;
   return run;
 }
 
@@ -80,6 +81,30 @@ TEST(WeldLayersReport, BigGridsAreThinnedToTheLimitKeepingTheirBorder) {
   ASSERT_EQ(f.surface.vertices.size(), 8u * 11u);        // rows 0, 3, ..., 18, 20; columns 0, 3, ..., 30
   EXPECT_EQ(f.surface.vertices.back(), job.eroded.at(20, 30));
   EXPECT_EQ(f.surface.faces.size(), 2u * 7u * 10u);
+}
+
+TEST(WeldLayersReport, PageDrawsEveryLayerAndShowsItsJson) {
+  const SharedRun& run = shared_run();
+  WeldLayersJobOptions o;
+  o.eroded_path = "blade.csv";
+  o.weld.min_coverage_pct = 90.0;
+  const html::Page page = weld_layers_report(o, run.job);
+  EXPECT_EQ(page.result["paths"].get<std::size_t>(), run.job.weld.paths.size());
+  EXPECT_GT(test::expect_cells_show_the_json(page), 15u);
+  const html::SceneObject* surface = test::scene_object(page, "eroded surface");
+  ASSERT_NE(surface, nullptr);
+  EXPECT_EQ(surface->colours.size(), surface->positions.size());
+  ASSERT_TRUE(page.scene.colour_bar().has_value());
+  for (int k = 1; k <= run.job.weld.layers; ++k) {
+    const html::SceneObject* layer = test::scene_object(page, "layer " + std::to_string(k));
+    ASSERT_NE(layer, nullptr);
+    EXPECT_TRUE(layer->pieces);
+  }
+  // Depth colours: grey above the threshold, the ramp's ends at the threshold and the deepest point.
+  EXPECT_EQ(depth_colour(0.0, 0.05, 1.5), (html::Rgb{215, 215, 215}));
+  EXPECT_EQ(depth_colour(1.5, 0.05, 1.5), (html::Rgb{150, 0, 0}));
+  EXPECT_EQ(depth_colour(9.0, 0.05, 1.5), (html::Rgb{150, 0, 0}));
+  EXPECT_EQ(depth_colour(0.050001, 0.05, 1.5)[1], 220);
 }
 
 }  // namespace
