@@ -12,6 +12,8 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/align.h"
 #include "conform/pipelines/align_json.h"
+#include "conform/pipelines/align_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -99,6 +101,7 @@ class AlignCommand : public Command {
     c.add_option("--out-aligned", options_.out_aligned_path,
                  "Write the scan moved into the reference frame (mm), mesh or cloud as read, unless the pose is not "
                  "to be trusted");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
@@ -106,7 +109,7 @@ class AlignCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.scan_path, options_.reference_path});
     if (init_.rfind("pairs:", 0) == 0) files.add_input(init_.substr(6));
-    files.add_outputs({options_.out_transform_path, options_.out_aligned_path});
+    files.add_outputs({options_.out_transform_path, options_.out_aligned_path, report_path_});
   }
 
   int run() override {
@@ -115,10 +118,13 @@ class AlignCommand : public Command {
     set_align_init(init_, &options_);
     options_.progress = stderr_progress(false);
     options_.cad.progress = options_.progress;
+    options_.keep_geometry = !report_path_.empty();
     const AlignResult result = run_align(options_);
     warn_all(result.warnings);
+    const nlohmann::json json = align_json(result);
+    if (!report_path_.empty()) write_report(report_path_, align_report(options_, result, json, report_date()));
     if (json_) {
-      print_json(align_json(result));
+      print_json(json);
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);
@@ -192,6 +198,7 @@ class AlignCommand : public Command {
   std::string method_;
   std::string init_ = "none";
   std::string units_ = "mm";
+  std::string report_path_;
   bool json_ = false;
 };
 

@@ -10,8 +10,10 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/compare.h"
 #include "conform/pipelines/compare_json.h"
+#include "conform/pipelines/compare_report.h"
 #include "conform/report/deviation_colours.h"
 #include "conform/report/deviation_histogram.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -42,13 +44,14 @@ class CompareCommand : public Command {
     c.add_option("--out-histogram", options_.out_histogram_path,
                  "Write a histogram of the deviations as .png, the tolerance band marked");
     c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.scan_path, options_.reference_path, options_.transform_path});
-    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path});
+    files.add_outputs({options_.out_deviation_path, options_.out_histogram_path, report_path_});
   }
 
   int run() override {
@@ -62,14 +65,18 @@ class CompareCommand : public Command {
     };
     options_.progress = stderr_progress(false);
     options_.cad.progress = options_.progress;
+    options_.keep_geometry = !report_path_.empty();
     const CompareResult result = run_compare(options_);
     warn_all(result.warnings);
     if (!result.deviation.note.empty()) warn(result.deviation.note);
+    const nlohmann::json json = compare_json(options_, result, units_);
+    if (!report_path_.empty()) write_report(report_path_, compare_report(options_, result, json, report_date()));
     if (json_) {
-      print_json(compare_json(options_, result, units_));
+      print_json(json);
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);
+      if (!report_path_.empty()) std::printf("wrote        %s\n", report_path_.c_str());
     }
     if (result.statistics.count == 0) {
       warn("no scan point was matched to the reference");
@@ -108,6 +115,7 @@ class CompareCommand : public Command {
   CLI::Option* tolerance_ = nullptr;
   double tolerance_mm_ = 0.0;
   std::string units_ = "mm";
+  std::string report_path_;
   bool json_ = false;
 };
 

@@ -12,6 +12,8 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/fit_cylinder.h"
 #include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/fit_cylinder_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -37,6 +39,7 @@ class FitCylinderCommand : public Command {
     c.add_option("--normals-k", options_.fit.normal_neighbors, "Neighbours of the PCA normals when the file has none");
     c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
     c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -44,7 +47,7 @@ class FitCylinderCommand : public Command {
 
   void declare_files(OutputSet& files) override {
     files.add_input(options_.input_path);
-    files.add_output(options_.out_path);
+    files.add_outputs({options_.out_path, report_path_});
   }
 
   int run() override {
@@ -54,10 +57,13 @@ class FitCylinderCommand : public Command {
     if (!axis_.empty() && !(options_.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
     options_.fit.progress = stderr_progress(quiet_ || json_);
     options_.cad.progress = options_.fit.progress;
+    options_.keep_geometry = !report_path_.empty();
     const FitCylinderJobResult result = run_fit_cylinder(options_);
     warn_all(result.warnings);
+    const nlohmann::json json = fit_cylinder_json(result);
+    if (!report_path_.empty()) write_report(report_path_, fit_cylinder_report(options_, result, json, report_date()));
     if (json_) {
-      print_json(fit_cylinder_json(result));
+      print_json(json);
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);
@@ -94,6 +100,7 @@ class FitCylinderCommand : public Command {
   CLI::Option* max_radius_ = nullptr;
   std::vector<double> axis_;
   double axis_tolerance_deg_ = 10.0;
+  std::string report_path_;
   bool json_ = false;
   bool quiet_ = false;
 };

@@ -210,6 +210,10 @@ AlignResult run_align(const AlignOptions& options) {
   result.icp = icp(scan, reference, result.T_start, fine_options(options, result.method, result.max_distance_mm));
   result.verdict = detail::judge_alignment(scan, reference_mesh, options, result);
   if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
+  if (options.keep_geometry) {
+    result.scan = scan_mesh;
+    result.reference = reference_mesh;
+  }
   return result;
 }
 

@@ -121,7 +121,7 @@ CompareResult run_compare(const CompareOptions& options) {
     result.T_ref_scan.translation() *= options.mm_per_unit;
     scan = transformed(scan, result.T_ref_scan);
   }
-  const Mesh reference = read_input(options.reference_path, options, "read reference", result);
+  Mesh reference = read_input(options.reference_path, options, "read reference", result);
   result.scan_points = scan.vertices.size();
   result.reference_points = reference.vertices.size();
   result.reference_faces = reference.faces.size();
@@ -135,6 +135,10 @@ CompareResult run_compare(const CompareOptions& options) {
   result.statistics = deviation_statistics(result.deviation.deviation_mm, statistics);
   add_doubts(scan, reference, options, result);
   write_outputs(options, scan, result);
+  if (options.keep_geometry) {
+    result.scan_ref = std::move(scan);
+    result.reference = std::move(reference);
+  }
   return result;
 }
 

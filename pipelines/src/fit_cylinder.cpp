@@ -100,6 +100,7 @@ FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options) {
     write_file_atomically(options.out_path, cylinder_residuals_csv(mesh.vertices, result.fit));
     result.out_path = options.out_path;
   }
+  if (options.keep_geometry) result.points_mm = mesh.vertices;
   return result;
 }
 

@@ -177,7 +177,7 @@ std::string colour_bar_svg(const ColourBar& bar) {
   constexpr double x = 10, w = 22, top = 28, h = 210;
   const double span = bar.max - bar.min > 0.0 ? bar.max - bar.min : 1.0;
   const auto y = [&](double v) { return top + (bar.max - v) / span * h; };
-  std::string out = "<svg class=\"colour-bar\" viewBox=\"0 0 110 260\">";
+  std::string out = "<svg class=\"colour-bar\" viewBox=\"0 0 150 266\">";
   out += "<defs><linearGradient id=\"cbar\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
   for (const auto& [v, c] : bar.stops) {
     out += "<stop offset=\"" + num((v - bar.min) / span) + "\" stop-color=\"" + css(c) + "\"/>";
@@ -196,7 +196,7 @@ std::string colour_bar_svg(const ColourBar& bar) {
   for (double v : labels) {
     out += "<text x=\"" + num(x + w + 6) + "\" y=\"" + num(y(v) + 4) + "\">" + format_g(v, 4) + "</text>";
   }
-  out += "<text x=\"4\" y=\"254\" class=\"note\">" + escape_html(bar.map) + "</text></svg>";
+  out += "<text x=\"4\" y=\"258\" font-size=\"10\">" + escape_html(bar.map) + "</text></svg>";
   return out;
 }
 

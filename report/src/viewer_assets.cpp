@@ -25,7 +25,7 @@ ul.warnings{background:#fff4d6;padding:6px 6px 6px 28px;margin:6px 0}
 .side{width:170px;font-size:13px}.side label{display:block;margin:2px 0}
 .side button{margin:4px 0 8px;padding:3px 10px}
 svg.plot{width:100%;max-width:720px;height:auto;font-size:11px;display:block}
-svg.colour-bar{width:150px;height:auto;font-size:11px}
+svg.colour-bar{width:165px;height:auto;font-size:11px}
 svg .grid{stroke:#e4e6ea}svg .frame{fill:none;stroke:#444}svg .title{font-weight:bold;font-size:12px}
 svg .line{fill:none;stroke-width:1.6}svg .band{fill:#2ca02c;fill-opacity:.14}svg .band-label{fill:#1d6b1d}
 svg .mark{stroke:#555;stroke-dasharray:4 3}
@@ -40,6 +40,7 @@ const char* viewer_js() {
 (function () {
   'use strict';
   var body = document.body;
+  var t0 = window.performance ? performance.now() : 0;
   function fill_json() {
     var text = document.getElementById('conform-result').textContent;
     document.getElementById('conform-json-text').textContent = JSON.stringify(JSON.parse(text), null, 2);
@@ -153,6 +154,7 @@ const char* viewer_js() {
     body.setAttribute('data-view-rect', [Math.round(r.left + window.scrollX), Math.round(r.top + window.scrollY),
                                          Math.round(r.width), Math.round(r.height)].join(','));
     body.setAttribute('data-scene-drawn', String(objects.length));
+    if (window.performance) body.setAttribute('data-render-ms', String(Math.round(performance.now() - t0)));
   }
 
   try { fill_json(); } catch (e) { body.setAttribute('data-json-error', String(e)); }

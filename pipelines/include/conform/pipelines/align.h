@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 
 #include "conform/core/cad.h"
+#include "conform/core/mesh.h"
 #include "conform/core/progress.h"
 #include "conform/registration/coarse.h"
 #include "conform/registration/icp.h"
@@ -69,6 +70,7 @@ struct AlignOptions {
   std::string out_aligned_path;    // the scan in the reference frame (mm), mesh or cloud as read; empty: not written
 
   ProgressFn progress;  // stages "read scan", "read reference", "normals", "coarse: ...", "icp", "write"
+  bool keep_geometry = false;  // keep the scan and the reference (mm, as read) in the result, for a report
 
   bool IsValid(std::string* error) const;
 };
@@ -112,6 +114,8 @@ struct AlignResult {
   std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
   std::string transform_path;         // written; empty when not
   std::string aligned_path;
+  Mesh scan;       // with options.keep_geometry: the scan as read, in its own frame, mm (else empty)
+  Mesh reference;  // with options.keep_geometry: the reference as read, mm (else empty)
 };
 
 // Throws conform::Error for bad input: invalid options, unreadable or empty files, a pairs file that is not 3+

@@ -47,6 +47,7 @@ struct CompareOptions {
   DeviationHistogramFn histogram;  // required with out_histogram_path
 
   ProgressFn progress;  // stages "read scan", "read reference", "deviation", "write"
+  bool keep_geometry = false;  // keep the scan (reference frame) and the reference in the result, for a report
 
   // False (and why, naming the option) for a missing input path, a unit factor or distance that is not > 0, a
   // tolerance that is not > 0, an output with the wrong extension, or a histogram path without a renderer.
@@ -64,6 +65,8 @@ struct CompareResult {
   std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
   std::string out_deviation_path;     // the files written (empty when not asked for)
   std::string out_histogram_path;
+  Mesh scan_ref;   // with options.keep_geometry: the scan in the reference frame, mm (else empty)
+  Mesh reference;  // with options.keep_geometry: the reference as measured against, mm (else empty)
 };
 
 // Throws conform::Error naming the file or the option: invalid options, an unreadable or empty input, NaN/Inf

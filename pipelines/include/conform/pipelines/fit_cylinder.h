@@ -19,6 +19,7 @@ struct FitCylinderJobOptions {
   CadReadOptions cad;      // a CAD input: its tessellation (core/cad.h)
   CylinderFitOptions fit;  // threshold, radius bounds, axis prior, seed, normal_neighbors, progress ...
   std::string out_path;    // CSV to write, whole or not at all; empty: none
+  bool keep_geometry = false;  // keep the points in the result, for a report
 
   // False (and why) when the input path is empty, the output is not .csv, or the fit options are not valid.
   bool IsValid(std::string* error) const;
@@ -35,6 +36,7 @@ struct FitCylinderJobResult {
   std::vector<std::string> warnings;  // what the reader noticed
   std::vector<CadReport> cad_inputs;  // the input, when it was CAD
   std::string out_path;               // the CSV written; empty when none was asked for
+  std::vector<Eigen::Vector3d> points_mm;  // with options.keep_geometry: the input's points (else empty)
 };
 
 // Throws conform::Error naming the file (unreadable, malformed, NaN coordinates, too few points, all points on a
