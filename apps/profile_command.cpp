@@ -11,8 +11,8 @@
 #include "conform/pipelines/profile.h"
 #include "conform/pipelines/profile_json.h"
 #include "conform/pipelines/profile_report.h"
-#include "conform/report/html.h"
 #include "number_list.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -61,7 +61,7 @@ class ProfileCommand : public Command {
     c.add_option("--noise", noise_mm_, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
     c.add_option("--out", out_,
                  "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
-    c.add_option("--report", report_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
+    add_report_option(c, report_);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -76,7 +76,7 @@ class ProfileCommand : public Command {
     options.features_path = features_;
     options.second_edge_path = second_edge_;
     options.out_path = out_;
-    options.keep_inputs = !report_.empty();
+    options.keep_geometry = !report_.empty();
     ProfileCompensationOptions& c = options.compensation;
     parse_profile_edge_model(model_, &c.edge.model);
     const Eigen::Vector3d z = parse_web_normal(web_normal_);
@@ -97,8 +97,8 @@ class ProfileCommand : public Command {
     }
     if (!report_.empty()) {
       html::Page page = profile_report(options, result);
-      page.date = html::utc_now_text();
-      html::write_html(report_, page);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& w : result.compensation.warnings) warn("profile: " + w);
     if (!result.compensation.ok) {

@@ -9,7 +9,7 @@
 #include "conform/pipelines/saddle.h"
 #include "conform/pipelines/saddle_json.h"
 #include "conform/pipelines/saddle_report.h"
-#include "conform/report/html.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -46,7 +46,7 @@ class SaddleCommand : public Command {
     speed->needs(period);
     period->needs(speed);
     command.add_option("--out", out_path_, "CSV to write: i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm");
-    command.add_option("--report", report_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
+    add_report_option(command, report_);
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     step_ = step;
     speed_ = speed;
@@ -70,8 +70,8 @@ class SaddleCommand : public Command {
     }
     if (!report_.empty()) {
       html::Page page = saddle_report(request_, options, result);
-      page.date = html::utc_now_text();
-      html::write_html(report_, page);
+      page.date = report_date();
+      write_report(report_, page);
     }
     if (!result.saddle.converged) {
       warn("saddle: " + result.saddle.termination + "; no file written");

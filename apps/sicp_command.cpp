@@ -11,7 +11,7 @@
 #include "conform/pipelines/sicp.h"
 #include "conform/pipelines/sicp_json.h"
 #include "conform/pipelines/sicp_report.h"
-#include "conform/report/html.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -80,7 +80,7 @@ class SicpCommand : public Command {
     c.add_option("--out-rows", options_.out_rows_path,
                  "Write each row's correction (across the edge, along the tool axis, along the path, mm) and its "
                  "confidence (CSV), with the trajectory");
-    c.add_option("--report", report_path_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -98,7 +98,7 @@ class SicpCommand : public Command {
     o.sicp.joint_refinement = !no_joint_;
     options_.progress = stderr_progress(quiet_);
     options_.cad.progress = options_.progress;
-    options_.keep_inputs = !report_path_.empty();
+    options_.keep_geometry = !report_path_.empty();
     const SicpJobResult r = run_sicp(options_);
     warn_all(r.warnings);
     if (json_) {
@@ -109,8 +109,8 @@ class SicpCommand : public Command {
     }
     if (!report_path_.empty()) {
       html::Page page = sicp_report(options_, r);
-      page.date = html::utc_now_text();
-      html::write_html(report_path_, page);
+      page.date = report_date();
+      write_report(report_path_, page);
     }
     if (!r.compensation.trusted) {
       std::fprintf(stderr, "conform: the compensated path cannot be trusted: %s; no trajectory written\n",

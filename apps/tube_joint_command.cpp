@@ -11,8 +11,8 @@
 #include "conform/pipelines/tube_joint.h"
 #include "conform/pipelines/tube_joint_json.h"
 #include "conform/pipelines/tube_joint_report.h"
-#include "conform/report/html.h"
 #include "number_list.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -96,7 +96,7 @@ class TubeJointCommand : public Command {
                  "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame)");
     c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses");
     c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses");
-    c.add_option("--report", report_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
+    add_report_option(c, report_);
     add_cad_options(c, o_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -128,7 +128,7 @@ class TubeJointCommand : public Command {
     TubeJointJobOptions o = tube_joint_job_options(request);
     o.solve.progress = stderr_progress(quiet_ || json_);
     o.cad.progress = o.solve.progress;
-    o.keep_inputs = !report_.empty();
+    o.keep_geometry = !report_.empty();
     const TubeJointJobResult r = run_tube_joint(o);
     const TubeJointSolution& s = r.solution;
     if (json_) {
@@ -139,8 +139,8 @@ class TubeJointCommand : public Command {
     }
     if (!report_.empty()) {
       html::Page page = tube_joint_report(o, r);
-      page.date = html::utc_now_text();
-      html::write_html(report_, page);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& w : s.warnings) warn("tube-joint: " + w);
     if (!s.ok && s.check.condition == "safety") {

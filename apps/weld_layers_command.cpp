@@ -10,7 +10,7 @@
 #include "conform/pipelines/weld_layers.h"
 #include "conform/pipelines/weld_layers_json.h"
 #include "conform/pipelines/weld_layers_report.h"
-#include "conform/report/html.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -49,7 +49,7 @@ class WeldLayersCommand : public Command {
     c.add_option("--min-crater-coverage", o_.weld.min_crater_coverage_pct,
                  "Least share of any one crater (larger than a bead) covered by layer 1, %; below: exit 1 naming it");
     c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz");
-    c.add_option("--report", report_, "Write a self-contained HTML report (tables, plots, interactive 3D view), also when the job fails (exit 1)");
+    add_report_option(c, report_);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -63,7 +63,7 @@ class WeldLayersCommand : public Command {
       throw Error("weld-layers: give --reference FILE or --reference-from-border");
     }
     o_.weld.bias = bias_ == "remove" ? BiasMode::kRemove : bias_ == "keep" ? BiasMode::kKeep : BiasMode::kCheck;
-    o_.keep_inputs = !report_.empty();
+    o_.keep_geometry = !report_.empty();
     const WeldLayersJobResult job = run_weld_layers(o_);
     const WeldLayerResult& w = job.weld;
     if (json_) {
@@ -73,8 +73,8 @@ class WeldLayersCommand : public Command {
     }
     if (!report_.empty()) {
       html::Page page = weld_layers_report(o_, job);
-      page.date = html::utc_now_text();
-      html::write_html(report_, page);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& text : w.warnings) warn("weld-layers: warning: " + text);
     if (!w.ok) {

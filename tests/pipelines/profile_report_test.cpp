@@ -25,7 +25,7 @@ ProfileJobResult run(const test::TempDir& dir, double bow) {
   ProfileJobOptions o;
   o.edge_path = files.edge_path;
   o.features_path = files.features_path;
-  o.keep_inputs = true;
+  o.keep_geometry = true;
   return run_profile(o);
 }
 

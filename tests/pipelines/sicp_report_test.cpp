@@ -29,7 +29,7 @@ struct SharedRun {
     o.scan_path = files.files.scan;
     o.trajectory_path = files.files.trajectory;
     o.surface_path = files.files.nominal;
-    o.keep_inputs = true;
+    o.keep_geometry = true;
     result = run_sicp(o);
   }
 };

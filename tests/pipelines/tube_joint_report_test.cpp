@@ -39,7 +39,7 @@ TEST(TubeJointReport, MeshesPathAndToolGlyphs) {
   request.job.stub_path = g.job.stub_path;
   request.job.spec.offset_mm = 30.0;
   request.job.spec.protrusion_mm = generated.spec.protrusion_mm;
-  request.job.keep_inputs = true;
+  request.job.keep_geometry = true;
   request.pitch_deg = 60.0;
   request.protrusion_given = true;
   request.step_deg = 2.0;

@@ -35,7 +35,7 @@ struct SharedRun {
     o.weld.layer_height_mm = 0.8;
     o.weld.chord_error_mm = 0.05;
     o.weld.torch_distance_mm = 10.0;
-    o.keep_inputs = true;
+    o.keep_geometry = true;
     job = run_weld_layers(o);
   }
 };

@@ -43,7 +43,7 @@ struct ProfileFeatureFigure {
 };
 
 struct ProfileReportFigures {
-  std::vector<Eigen::Vector3d> edge;         // measured points, as read (empty without keep_inputs)
+  std::vector<Eigen::Vector3d> edge;         // measured points, as read (empty without keep_geometry)
   std::vector<Eigen::Vector3d> second_edge;  // as read, when given
   std::vector<Eigen::Vector3d> edge_curve;   // the chosen edge model, s = 0 .. L
   ProfileStraightFrame straight;
@@ -53,7 +53,7 @@ struct ProfileReportFigures {
 ProfileReportFigures profile_report_figures(const ProfileJobResult& job);
 
 // The page: header (inputs, options, verdict: ok, or the termination), the 3D view (edge points with a run with
-// keep_inputs), the edge fit's figures and the per-feature table (cells tied to profile_json), the displacement
+// keep_geometry), the edge fit's figures and the per-feature table (cells tied to profile_json), the displacement
 // along the profile. Page::date is left to the caller.
 html::Page profile_report(const ProfileJobOptions& options, const ProfileJobResult& job);
 

@@ -30,11 +30,11 @@ struct SicpReportFigures {
   std::vector<double> segment, segment_rms_mm, segment_confidence;
 };
 
-// The figures of a run with keep_inputs (the contour and the nominal trajectory are empty without it).
+// The figures of a run with keep_geometry (the contour and the nominal trajectory are empty without it).
 // min_confidence: the checks' threshold (SicpCheckOptions::min_confidence).
 SicpReportFigures sicp_report_figures(const SicpJobResult& result, double min_confidence);
 
-// The page: header (inputs, options, verdict: trusted, or why not), the 3D view (a run with keep_inputs), tables of
+// The page: header (inputs, options, verdict: trusted, or why not), the 3D view (a run with keep_geometry), tables of
 // the figures `conform sicp` prints (cells tied to sicp_json), the per-row and per-segment plots. Page::date is left
 // to the caller.
 html::Page sicp_report(const SicpJobOptions& options, const SicpJobResult& result);

@@ -19,7 +19,7 @@ namespace conform {
 constexpr std::size_t kTubeJointReportGlyphs = 180;
 
 struct TubeJointReportFigures {
-  Mesh leg_S;                              // the leg posed into S by T_S_L (empty without keep_inputs)
+  Mesh leg_S;                              // the leg posed into S by T_S_L (empty without keep_geometry)
   std::vector<Eigen::Vector3d> path;       // the seam in S, closed: ends on its first point (empty when !ok)
   ReportGlyphs cut;                        // at the cutting tool's position p_c, direction d_c (Eq. 9)
   ReportGlyphs weld;                       // at the welding torch's position p_w, direction d_w (Eq. 11)
@@ -34,7 +34,7 @@ TubeJointReportFigures tube_joint_report_figures(const TubeJointJobResult& job, 
                                                  double weld_standoff_mm);
 
 // The page: header (inputs, options, verdict: one closed seam and tools clear, or the failed condition, marked in the
-// 3D view where it failed), the meshes (a run with keep_inputs), path and tools, the figures `conform tube-joint`
+// 3D view where it failed), the meshes (a run with keep_geometry), path and tools, the figures `conform tube-joint`
 // prints (cells tied to tube_joint_json), the angles along the azimuth. Page::date is left to the caller.
 html::Page tube_joint_report(const TubeJointJobOptions& options, const TubeJointJobResult& job);
 

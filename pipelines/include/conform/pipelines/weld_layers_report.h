@@ -25,7 +25,7 @@ struct WeldLayerFigure {
 };
 
 struct WeldLayersReportFigures {
-  Mesh surface;                  // the eroded grid (thinned), two triangles per cell; empty without keep_inputs
+  Mesh surface;                  // the eroded grid (thinned), two triangles per cell; empty without keep_geometry
   std::vector<double> depth_mm;  // per surface vertex: depth below the reference (DamageMap::depth)
   int stride = 1;                // every stride-th row and column of the grid
   std::vector<std::vector<Eigen::Vector3d>> rims;  // a closed rim ends on its first point
@@ -41,7 +41,7 @@ WeldLayersReportFigures weld_layers_report_figures(const WeldLayersJobResult& jo
 html::Rgb depth_colour(double depth_mm, double threshold_mm, double max_depth_mm);
 
 // The page: header (inputs, options, verdict: ok, or the termination), the surface coloured by depth with its colour
-// bar, the rims and every layer's paths (a run with keep_inputs for the surface), the craters and the layers as
+// bar, the rims and every layer's paths (a run with keep_geometry for the surface), the craters and the layers as
 // tables (cells tied to weld_layers_json), coverage and length by layer. Page::date is left to the caller.
 html::Page weld_layers_report(const WeldLayersJobOptions& options, const WeldLayersJobResult& job);
 
