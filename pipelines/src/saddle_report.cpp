@@ -11,6 +11,63 @@ namespace conform {
 namespace {
 
 constexpr double kDegPerRad = 57.29577951308232;
+constexpr double kPi = 3.141592653589793;
+
+constexpr int kAround = 96;  // context meshes: azimuth steps of the pipe, grid steps of the leg patch
+
+// Quads between two rows of `cols` vertices each, row-major from vertex `first`.
+void add_quads(Mesh* m, int rows, int cols, bool wrap) {
+  for (int r = 0; r + 1 < rows; ++r) {
+    for (int c = 0; c < (wrap ? cols : cols - 1); ++c) {
+      const int a = r * cols + c, b = r * cols + (c + 1) % cols, d = a + cols, e = b + cols;
+      m->faces.push_back({a, b, e});
+      m->faces.push_back({a, e, d});
+    }
+  }
+}
+
+// The pipe's wall between the seam and r above the seam's highest point.
+Mesh pipe_mesh(const SaddleCurve& curve) {
+  const double r = curve.geometry().pipe_radius_mm;
+  Mesh m;
+  double top = -1e300;
+  for (int k = 0; k < kAround; ++k) top = std::max(top, curve.point(2.0 * kPi * k / kAround).z());
+  for (const bool upper : {false, true}) {
+    for (int k = 0; k < kAround; ++k) {
+      const double phi = 2.0 * kPi * k / kAround;
+      const Eigen::Vector3d seam = curve.point(phi);
+      m.vertices.emplace_back(seam.x(), seam.y(), upper ? top + r : seam.z());
+    }
+  }
+  add_quads(&m, 2, kAround, true);
+  return m;
+}
+
+// The cylinder's patch under the seam: the seam's extent in the leg frame L (azimuth about z_L, height along it) and
+// r / 2 around it, carried into P.
+Mesh leg_mesh(const SaddleCurve& curve) {
+  const SaddleGeometry& g = curve.geometry();
+  const Eigen::Isometry3d T_L = T_L_P(g.joint());
+  double a_lo = 1e300, a_hi = -1e300, z_lo = 1e300, z_hi = -1e300;
+  for (int k = 0; k < kAround; ++k) {
+    const Eigen::Vector3d p = T_L * curve.point(2.0 * kPi * k / kAround);
+    a_lo = std::min(a_lo, std::atan2(p.y(), p.x())), a_hi = std::max(a_hi, std::atan2(p.y(), p.x()));
+    z_lo = std::min(z_lo, p.z()), z_hi = std::max(z_hi, p.z());
+  }
+  const double margin = 0.5 * g.pipe_radius_mm;
+  a_lo -= margin / g.leg_radius_mm, a_hi += margin / g.leg_radius_mm, z_lo -= margin, z_hi += margin;
+  const int n = kAround / 4;
+  Mesh m;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double a = a_lo + (a_hi - a_lo) * i / (n - 1), z = z_lo + (z_hi - z_lo) * j / (n - 1);
+      const Eigen::Vector3d p_L(g.leg_radius_mm * std::cos(a), g.leg_radius_mm * std::sin(a), z);
+      m.vertices.push_back(T_L.inverse() * p_L);
+    }
+  }
+  add_quads(&m, n, n, false);
+  return m;
+}
 
 using html::count;
 using html::number;
@@ -64,6 +121,8 @@ SaddleReportFigures saddle_report_figures(const SaddleJobOptions& options, const
   const std::vector<SaddlePoint>& points = job.saddle.points;
   if (points.empty()) return f;
   const SaddleCurve curve(options.saddle.geometry);
+  f.pipe = pipe_mesh(curve);
+  f.leg = leg_mesh(curve);
   for (const SaddlePoint& p : points) {
     f.max_position_error_mm = std::max(f.max_position_error_mm, (p.position - curve.point(p.theta_rad)).norm());
     const double pose = curve.pose(p.theta_rad, options.saddle.start_pose_rad);
@@ -101,7 +160,9 @@ html::Page saddle_report(const SaddleRequest& request, const SaddleJobOptions& o
                              : html::Verdict{html::Level::kFail, s.termination + "; no file written"};
   page.result = j;
   const SaddleReportFigures f = saddle_report_figures(options, job);
-  page.scene.add_polyline("seam path", f.path, html::kBlue);
+  page.scene.add_mesh("pipe", f.pipe, html::kBlue, 0.3);
+  page.scene.add_mesh("cylinder (leg)", f.leg, html::kGrey, 0.45);
+  page.scene.add_polyline("seam path", f.path, html::kRed);
   // Torch glyphs a quarter of the pipe radius long.
   page.scene.add_arrows("torch", f.torch.origins, f.torch.directions, request.pipe_radius_mm / 4.0, html::kOrange);
   page.sections.push_back({"Figures",

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/saddle_json.h"
+#include "conform/toolpath/saddle_curve.h"
 #include "report_page_checks.h"
 
 namespace conform {
@@ -37,6 +38,13 @@ TEST(SaddleReport, TableOnePathWithItsClosedFormAndTorch) {
   EXPECT_LT(f.max_position_error_mm, 1e-9);
   EXPECT_LT(f.max_pose_error_deg, 1e-9);
   for (std::size_t i = 0; i < f.z_mm.size(); ++i) EXPECT_NEAR(f.z_mm[i], f.closed_z_mm[i], 1e-9);
+  // Context meshes: the pipe's wall (distance r from the pipe axis z_P), the cylinder's patch (on the cylinder).
+  const SaddleCurve curve(o.saddle.geometry);
+  ASSERT_EQ(f.pipe.vertices.size(), 2u * 96u);
+  for (const Eigen::Vector3d& v : f.pipe.vertices) EXPECT_NEAR(v.head<2>().norm(), 150.0, 1e-9);
+  EXPECT_NEAR(f.pipe.vertices[0].z(), curve.point(0.0).z(), 1e-9);  // its lower edge is the seam
+  ASSERT_EQ(f.leg.faces.size(), 2u * 23u * 23u);
+  for (const Eigen::Vector3d& v : f.leg.vertices) EXPECT_LT(curve.leg_residual(v), 1e-9);
   // 40 glyphs: the last point is the first again. At theta 0 the pose is 45 deg: between the pipe axis and y_P.
   ASSERT_EQ(f.torch.origins.size(), 40u);
   EXPECT_NEAR((f.torch.directions[0] - Eigen::Vector3d(0.0, std::sqrt(0.5), std::sqrt(0.5))).norm(), 0.0, 1e-12);

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "conform/core/mesh.h"
 #include "conform/pipelines/report_figures.h"
 #include "conform/pipelines/saddle.h"
 #include "conform/pipelines/saddle_json.h"
@@ -27,6 +28,10 @@ struct SaddleReportFigures {
   ReportGlyphs torch;                 // at the seam, towards the torch, at most kSaddleReportGlyphs
   // Per plotted point (the same decimation as path): theta in degrees, the path's z and pose, the closed form's.
   std::vector<double> theta_deg, z_mm, closed_z_mm, pose_deg, closed_pose_deg, step_mm;
+  // Context, in P: the pipe's wall from the seam up to r above its highest point, and the patch of the cylinder
+  // (leg) under the seam with r / 2 around it.
+  Mesh pipe;
+  Mesh leg;
   // Over every point (not only the plotted ones): the largest |path - closed form|.
   double max_position_error_mm = 0.0;
   double max_pose_error_deg = 0.0;
