@@ -10,8 +10,33 @@
 
 #include "conform/report/deviation_colours.h"
 #include "conform/report/png_writer.h"
+#include "histogram_axis.h"
 
 namespace conform {
+namespace detail {
+
+double nice_step(double span, int count) {
+  const double raw = span / count;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0}) {
+    if (m * power >= raw) return m * power;
+  }
+  return 10.0 * power;
+}
+
+std::pair<double, double> deviation_axis(const std::vector<double>& sorted, const DeviationStatistics& s) {
+  double lo = std::min(percentile_of_sorted(sorted, 0.5), 0.0);
+  double hi = std::max(percentile_of_sorted(sorted, 99.5), 0.0);
+  if (s.tolerance_mm) {
+    lo = std::min(lo, -1.3 * *s.tolerance_mm);
+    hi = std::max(hi, 1.3 * *s.tolerance_mm);
+  }
+  const double span = hi - lo > 0.0 ? hi - lo : 2e-3;
+  return {lo - 0.05 * span, hi + 0.05 * span};
+}
+
+}  // namespace detail
+
 namespace {
 
 constexpr int kBins = 60;
@@ -34,32 +59,10 @@ void text(cv::Mat& img, const std::string& s, cv::Point at, double scale = 0.5, 
   cv::putText(img, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, c, 1, cv::LINE_AA);
 }
 
-// A step of 1, 2 or 5 times a power of ten giving about `count` intervals over `span`.
-double nice_step(double span, int count) {
-  const double raw = span / count;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * power >= raw) return m * power;
-  }
-  return 10.0 * power;
-}
-
 struct Axis {
   double lo, hi;
   int x(double v) const { return kPlot.x + static_cast<int>(std::lround((v - lo) / (hi - lo) * kPlot.width)); }
 };
-
-// 0.5th-99.5th percentile, 0 and the band with a margin, padded by 5 %.
-Axis x_axis(const std::vector<double>& sorted, const DeviationStatistics& s) {
-  double lo = std::min(percentile_of_sorted(sorted, 0.5), 0.0);
-  double hi = std::max(percentile_of_sorted(sorted, 99.5), 0.0);
-  if (s.tolerance_mm) {
-    lo = std::min(lo, -1.3 * *s.tolerance_mm);
-    hi = std::max(hi, 1.3 * *s.tolerance_mm);
-  }
-  const double span = hi - lo > 0.0 ? hi - lo : 2e-3;
-  return {lo - 0.05 * span, hi + 0.05 * span};
-}
 
 void dashed_vertical(cv::Mat& img, int x, const cv::Scalar& colour) {
   for (int y = kPlot.y; y < kPlot.y + kPlot.height; y += 10) {
@@ -78,7 +81,7 @@ void draw_band(cv::Mat& img, const Axis& axis, double t) {
 }
 
 void draw_axes(cv::Mat& img, const Axis& axis, int max_count) {
-  const double step = nice_step(axis.hi - axis.lo, 8);
+  const double step = detail::nice_step(axis.hi - axis.lo, 8);
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
   const int bottom = kPlot.y + kPlot.height;
   for (double v = std::ceil(axis.lo / step) * step; v <= axis.hi; v += step) {
@@ -86,7 +89,7 @@ void draw_axes(cv::Mat& img, const Axis& axis, int max_count) {
     cv::line(img, {axis.x(v), bottom}, {axis.x(v), bottom + 5}, kBlack, 1);
     text(img, format("%.*f", shown, decimals), {axis.x(v), bottom + 22}, 0.45, kBlack, 0.5);
   }
-  const double count_step = std::max(1.0, nice_step(std::max(max_count, 1), 5));
+  const double count_step = std::max(1.0, detail::nice_step(std::max(max_count, 1), 5));
   for (double c = 0; c <= max_count * 1.08; c += count_step) {
     const int y = bottom - static_cast<int>(std::lround(c / (max_count * 1.1) * kPlot.height));
     cv::line(img, {kPlot.x - 5, y}, {kPlot.x, y}, kBlack, 1);
@@ -120,7 +123,8 @@ std::string deviation_histogram_png(const std::vector<double>& deviation_mm, con
   if (sorted.empty()) {
     text(img, "no deviations to show", {kHistogramWidth / 2, kHistogramHeight / 2}, 0.7, kDark, 0.5);
   } else {
-    const Axis axis = x_axis(sorted, s);
+    const std::pair<double, double> range = detail::deviation_axis(sorted, s);
+    const Axis axis{range.first, range.second};
     std::vector<int> counts(kBins, 0);
     std::size_t beyond = 0;
     for (double d : sorted) {

@@ -6,24 +6,12 @@
 #include <stdexcept>
 
 #include "conform/report/deviation_colours.h"
+#include "histogram_axis.h"
 
 namespace conform::html {
 namespace {
 
 constexpr std::size_t kBins = 60;
-
-// As the PNG histogram's axis (deviation_histogram.cpp): 0.5th-99.5th percentile, 0 and the band with a margin,
-// padded by 5 %.
-std::pair<double, double> axis_of(const std::vector<double>& sorted, const DeviationStatistics& s) {
-  double lo = std::min(percentile_of_sorted(sorted, 0.5), 0.0);
-  double hi = std::max(percentile_of_sorted(sorted, 99.5), 0.0);
-  if (s.tolerance_mm) {
-    lo = std::min(lo, -1.3 * *s.tolerance_mm);
-    hi = std::max(hi, 1.3 * *s.tolerance_mm);
-  }
-  const double span = hi - lo > 0.0 ? hi - lo : 2e-3;
-  return {lo - 0.05 * span, hi + 0.05 * span};
-}
 
 std::string pointer(const DeviationView& v, const char* key) {
   return v.tie_to_json ? v.json_prefix + "/" + key : std::string();
@@ -85,7 +73,7 @@ void add_deviation_view(Page& page, const std::vector<Eigen::Vector3d>& points, 
   }
   std::sort(sorted.begin(), sorted.end());
   if (!sorted.empty()) {
-    const auto [lo, hi] = axis_of(sorted, s);
+    const auto [lo, hi] = conform::detail::deviation_axis(sorted, s);
     Plot plot = histogram_plot(sorted, kBins, lo, hi, "Histogram of the " + view.quantity + "s",
                                view.quantity + " from the " + view.reference_name + " (mm)",
                                [&s](double d) { return deviation_colour(d, s); });

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "histogram_axis.h"
 #include "report_detail.h"
 
 namespace conform::html::detail {
@@ -23,16 +24,6 @@ std::string num(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f", v);
   return text;
-}
-
-// A step of 1, 2 or 5 times a power of ten giving about `count` intervals over `span` (> 0).
-double nice_step(double span, int count) {
-  const double raw = span / count;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * power >= raw) return m * power;
-  }
-  return 10.0 * power;
 }
 
 struct Range {
@@ -77,7 +68,7 @@ Frame frame_of(const Plot& plot) {
 
 void axes(std::string& out, const Frame& f, const Plot& plot) {
   const double bottom = kHeight - kBottom, right = kWidth - kRight;
-  const double xs = nice_step(f.x.hi - f.x.lo, 8), ys = nice_step(f.y.hi - f.y.lo, 5);
+  const double xs = conform::detail::nice_step(f.x.hi - f.x.lo, 8), ys = conform::detail::nice_step(f.y.hi - f.y.lo, 5);
   for (double v = std::ceil(f.x.lo / xs) * xs; v <= f.x.hi + 1e-9 * xs; v += xs) {
     const double shown = std::abs(v) < 0.5 * xs ? 0.0 : v;
     out += "<line class=\"grid\" x1=\"" + num(f.px(v)) + "\" y1=\"" + num(kTop) + "\" x2=\"" + num(f.px(v)) +

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <ostream>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
@@ -25,6 +26,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "conform/report/html.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -39,6 +41,9 @@ struct ReportCase {
   bool deviation_colours = false;  // the view shows the deviation map (its green and red)
   std::size_t min_tied_cells = 5;  // table cells tied to the JSON, at least
 };
+
+// gtest prints a case by its job (the ctest names stay readable and the same from run to run).
+void PrintTo(const ReportCase& c, std::ostream* os) { *os << c.job; }
 
 const std::vector<std::string> kPatch = {"generate", "tube", "--quiet", "--radius", "100", "--length", "80",
                                          "--arc-deg", "60"};
@@ -281,6 +286,52 @@ TEST(ReportBrowserMatrix, NetworkCheckSeesAFetch) {
   const Rendered r = render(dir.file("fetch.html"), dir);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.err.substr(0, 2000);
   EXPECT_EQ(r.page_requests.size(), 2u);
+}
+
+// Every kind of scene object the report module offers (the other jobs' pages use them): points with one colour,
+// a mesh with per-vertex colours, a closed polyline and arrows, far from the origin; the page draws them all, each in
+// its colour.
+TEST(ReportBrowserMatrix, EveryObjectKindDraws) {
+  if (chromium_path().empty()) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
+  test::TempDir dir;
+  html::Page page;
+  page.job = "scene";
+  page.verdict = {html::Level::kOk, "every object kind"};
+  const Eigen::Vector3d far(250000.0, -80000.0, 1200.0);
+  std::vector<Eigen::Vector3d> ring, grid, origins, directions;
+  for (int i = 0; i < 72; ++i) {
+    const double a = i * M_PI / 36.0;
+    ring.push_back(far + Eigen::Vector3d(60.0 * std::cos(a), 60.0 * std::sin(a), 0.0));
+    origins.push_back(far + Eigen::Vector3d(40.0 * std::cos(a), 40.0 * std::sin(a), 0.0));
+    directions.emplace_back(0.0, 0.0, 1.0);
+  }
+  for (int i = -20; i <= 20; ++i) {
+    for (int j = -20; j <= 20; ++j) grid.push_back(far + Eigen::Vector3d(i, j, 30.0));
+  }
+  Mesh square;
+  square.vertices = {far + Eigen::Vector3d(-30, -30, -10), far + Eigen::Vector3d(30, -30, -10),
+                     far + Eigen::Vector3d(30, 30, -10), far + Eigen::Vector3d(-30, 30, -10)};
+  square.faces = {{0, 1, 2}, {0, 2, 3}};
+  page.scene.add_points("grid", grid, html::Rgb{20, 20, 220}, 3.0);
+  page.scene.add_mesh("square", square.vertices, square.faces, html::kGrey, 1.0,
+                      {{230, 20, 20}, {230, 20, 20}, {230, 20, 20}, {230, 20, 20}});
+  page.scene.add_polyline("ring", ring, html::Rgb{20, 160, 20}, true);
+  page.scene.add_arrows("normals", origins, directions, 25.0, html::Rgb{240, 140, 0});
+  html::write_html(dir.file("scene.html"), page);
+  const Rendered r = render(dir.file("scene.html"), dir);
+  ASSERT_EQ(r.run.exit_code, 0) << r.run.err.substr(0, 2000);
+  ASSERT_FALSE(r.screenshot.empty());
+  EXPECT_EQ(body_attribute(r.dom, "data-scene-error"), "");
+  EXPECT_EQ(body_attribute(r.dom, "data-scene-drawn"), "4");
+  int x = 0, y = 0, w = 0, h = 0;
+  ASSERT_EQ(std::sscanf(body_attribute(r.dom, "data-view-rect").c_str(), "%d,%d,%d,%d", &x, &y, &w, &h), 4);
+  const cv::Mat canvas = r.screenshot(cv::Rect(x + 2, y + 2, w - 4, h - 4) & cv::Rect(0, 0, r.screenshot.cols, r.screenshot.rows));
+  // Lit, the red mesh is darker than its colour; unlit points, lines and arrows keep theirs.
+  EXPECT_GT(count_pixels(canvas, [](const cv::Vec3b& p) { return p[2] > 100 && p[1] < 40 && p[0] < 40; }), 500) << "mesh";
+  EXPECT_GT(count_pixels(canvas, [](const cv::Vec3b& p) { return near(p, 20, 20, 220, 40); }), 200) << "points";
+  EXPECT_GT(count_pixels(canvas, [](const cv::Vec3b& p) { return near(p, 20, 160, 20, 50); }), 50) << "polyline";
+  EXPECT_GT(count_pixels(canvas, [](const cv::Vec3b& p) { return near(p, 240, 140, 0, 50); }), 50) << "arrows";
+  EXPECT_TRUE(r.page_requests.empty());
 }
 
 }  // namespace

@@ -88,8 +88,8 @@ class Scene {
   Scene() = default;
   explicit Scene(Limits limits) : limits_(limits) {}
 
-  // Each returns the object added, to adjust (e.g. visible = false). Throws std::invalid_argument when a per-item
-  // array does not match the positions, or the name is already used.
+  // Each returns the object added, to adjust (e.g. visible = false; the reference holds until the next add_*).
+  // Throws std::invalid_argument when a per-item array does not match the positions, or the name is already used.
   SceneObject& add_points(const std::string& name, const std::vector<Eigen::Vector3d>& positions, Rgb colour,
                           double size_px = 2.0);
   SceneObject& add_points(const std::string& name, const std::vector<Eigen::Vector3d>& positions,
