@@ -89,8 +89,8 @@ html::Table edge_table(const ProfileJobResult& job) {
   t.rows.push_back({"fit max (mm)", number(r.edge.max_mm, 4, "/edge_max_mm")});
   t.rows.push_back({"web", {r.web_source, "/web"}});
   t.rows.push_back({"mapped points", count(r.mapped_points, "/mapped_points")});
-  t.rows.push_back({"arc-length residual max (mm)", html::number_g(r.arc_length_residual_max_mm, 3,
-                                                                    "/arc_length_residual_max_mm")});
+  t.rows.push_back(
+      {"arc-length residual max (mm)", html::number_g(r.arc_length_residual_max_mm, 3, "/arc_length_residual_max_mm")});
   return t;
 }
 
@@ -108,9 +108,14 @@ html::Table feature_table(const ProfileReportFigures& f, const ProfileJobResult&
   for (std::size_t k = 0; k < f.features.size(); ++k) {
     const ProfileFeatureFigure& g = f.features[k];
     const std::string at = "/features/" + std::to_string(k) + "/";
-    t.rows.push_back({{g.id, at + "id"}, {g.type, at + "type"}, count(g.mapped.size(), at + "points"),
-                      number(g.designed.x(), 3), number(g.designed.y(), 3), xyz(g.mapped_at),
-                      number(g.displacement_mm, 3), number(g.max_displacement_mm, 3),
+    t.rows.push_back({{g.id, at + "id"},
+                      {g.type, at + "type"},
+                      count(g.mapped.size(), at + "points"),
+                      number(g.designed.x(), 3),
+                      number(g.designed.y(), 3),
+                      xyz(g.mapped_at),
+                      number(g.displacement_mm, 3),
+                      number(g.max_displacement_mm, 3),
                       number(job.compensation.features[k].cubic_deviation_max_mm, 3, at + "cubic_deviation_max_mm")});
   }
   return t;

@@ -95,7 +95,8 @@ html::Table figures_table(const SaddleJobResult& job, const SaddleReportFigures&
 }
 
 std::vector<html::Plot> plots(const SaddleReportFigures& f) {
-  html::Plot z = detail::line_plot("Height of the seam along the pipe axis: path and closed form (Eq. 7)", "theta (deg)", "z (mm)");
+  html::Plot z = detail::line_plot("Height of the seam along the pipe axis: path and closed form (Eq. 7)",
+                                   "theta (deg)", "z (mm)");
   z.series = {detail::series("closed form", f.theta_deg, f.closed_z_mm, html::kGrey),
               detail::series("path", f.theta_deg, f.z_mm, html::kBlue, f.theta_deg.size() <= 400)};
   html::Plot pose = detail::line_plot("Torch pose angle: path and closed form (Eq. 12)", "theta (deg)", "pose (deg)");
@@ -150,10 +151,14 @@ html::Page saddle_report(const SaddleRequest& request, const SaddleJobOptions& o
   html::Page page;
   page.job = "saddle";
   const nlohmann::json j = saddle_json(request, job);
-  page.options = {{"R_mm", request.leg_radius_mm},         {"r_mm", request.pipe_radius_mm},
-                  {"pitch_deg", request.pitch_deg},         {"offset_mm", request.offset_mm},
-                  {"right_angle_pose_deg", request.right_angle_pose_deg}, {"step_deg", j["step_deg"]},
-                  {"speed_mm_per_s", j["speed_mm_per_s"]}, {"period_s", j["period_s"]}};
+  page.options = {{"R_mm", request.leg_radius_mm},
+                  {"r_mm", request.pipe_radius_mm},
+                  {"pitch_deg", request.pitch_deg},
+                  {"offset_mm", request.offset_mm},
+                  {"right_angle_pose_deg", request.right_angle_pose_deg},
+                  {"step_deg", j["step_deg"]},
+                  {"speed_mm_per_s", j["speed_mm_per_s"]},
+                  {"period_s", j["period_s"]}};
   const SaddleResult& s = job.saddle;
   page.verdict = s.converged ? html::Verdict{html::Level::kOk, "converged: " + std::to_string(s.points.size()) +
                                                                    " points, " + to_string(s.rule)}
@@ -165,12 +170,13 @@ html::Page saddle_report(const SaddleRequest& request, const SaddleJobOptions& o
   page.scene.add_polyline("seam path", f.path, html::kRed);
   // Torch glyphs a quarter of the pipe radius long.
   page.scene.add_arrows("torch", f.torch.origins, f.torch.directions, request.pipe_radius_mm / 4.0, html::kOrange);
-  page.sections.push_back({"Figures",
-                           {"Paper frame P (Xue et al. 2018, Fig. 2): z along the pipe axis away from the cylinder, y "
-                            "towards the toe. Torch glyphs: from the seam towards the torch, at the pose angle from the "
-                            "pipe axis in the plane of the axis and the pipe's normal."},
-                           {figures_table(job, f)},
-                           plots(f)});
+  page.sections.push_back(
+      {"Figures",
+       {"Paper frame P (Xue et al. 2018, Fig. 2): z along the pipe axis away from the cylinder, y "
+        "towards the toe. Torch glyphs: from the seam towards the torch, at the pose angle from the "
+        "pipe axis in the plane of the axis and the pipe's normal."},
+       {figures_table(job, f)},
+       plots(f)});
   return page;
 }
 

@@ -86,7 +86,8 @@ html::Table segments_table(const SicpJobResult& r) {
 
 std::vector<html::Plot> plots(const SicpReportFigures& f, const SicpJobOptions& o, double noise_mm) {
   std::vector<html::Plot> out;
-  html::Plot correction = detail::line_plot("Correction per row (compensated - nominal, in the row's frame)", "row", "correction (mm)");
+  html::Plot correction =
+      detail::line_plot("Correction per row (compensated - nominal, in the row's frame)", "row", "correction (mm)");
   correction.series = {detail::series("across the edge", f.row, f.across_mm, html::kBlue),
                        detail::series("along the tool axis", f.row, f.axis_mm, html::kOrange),
                        detail::series("along the path", f.row, f.along_mm, html::kGreen)};
@@ -98,8 +99,8 @@ std::vector<html::Plot> plots(const SicpReportFigures& f, const SicpJobOptions& 
   if (!f.segment.empty()) {
     html::Plot residual = detail::line_plot("Residual per segment", "segment", "ICP residual RMS (mm)");
     residual.series = {detail::series("RMS", f.segment, f.segment_rms_mm, html::kBlue, true)};
-    residual.y_band = detail::band(0.0, o.compensation.checks.outlier_ratio * noise_mm,
-                                 "within the outlier ratio x the scan noise");
+    residual.y_band =
+        detail::band(0.0, o.compensation.checks.outlier_ratio * noise_mm, "within the outlier ratio x the scan noise");
     out.push_back(residual);
   }
   return out;

@@ -49,8 +49,8 @@ using html::count;
 using html::number;
 
 // Distinct colours for layers 1, 2, ... (cycled).
-const html::Rgb kLayerColours[] = {html::kBlue, html::kOrange, html::kGreen, html::kPurple, html::kRed,
-                                   html::kDarkGrey};
+const html::Rgb kLayerColours[] = {html::kBlue,   html::kOrange, html::kGreen,
+                                   html::kPurple, html::kRed,    html::kDarkGrey};
 
 nlohmann::json options_json(const WeldLayersJobOptions& o) {
   return {{"bead_spacing_mm", o.weld.bead_spacing_mm},
@@ -83,8 +83,8 @@ html::Table damage_table(const WeldLayerResult& w) {
 }
 
 html::Table crater_table(const DamageMap& d) {
-  html::Table t{"Craters", {"crater", "depth (mm)", "area (mm^2)", "volume (mm^3)", "deepest at (mm)", "at the border"},
-                {}};
+  html::Table t{
+      "Craters", {"crater", "depth (mm)", "area (mm^2)", "volume (mm^3)", "deepest at (mm)", "at the border"}, {}};
   for (std::size_t k = 0; k < d.regions.size(); ++k) {
     const DamageRegion& r = d.regions[k];
     const std::string at = "/craters/" + std::to_string(k) + "/";
@@ -124,8 +124,10 @@ void add_scene(const WeldLayersReportFigures& f, const WeldLayerResult& w, html:
     std::vector<html::Rgb> colours;
     for (const double d : f.depth_mm) colours.push_back(depth_colour(d, threshold, deepest));
     scene->add_mesh("eroded surface", f.surface.vertices, f.surface.faces, html::kGrey, 1.0, colours);
-    scene->set_colour_bar(html::make_colour_bar("depth below the reference (mm)", "grey above the threshold, "
-                                                "yellow to dark red", 0.0, deepest,
+    scene->set_colour_bar(html::make_colour_bar("depth below the reference (mm)",
+                                                "grey above the threshold, "
+                                                "yellow to dark red",
+                                                0.0, deepest,
                                                 [&](double d) { return depth_colour(d, threshold, deepest); }));
   }
   if (!f.rims.empty()) scene->add_polylines("rims", f.rims, html::kRed);
@@ -157,7 +159,8 @@ WeldLayersReportFigures weld_layers_report_figures(const WeldLayersJobResult& jo
   for (int k = 1; k <= w.layers; ++k) {
     WeldLayerFigure layer;
     layer.layer = k;
-    if (static_cast<std::size_t>(k) <= w.coverage_pct.size()) layer.coverage_pct = w.coverage_pct[static_cast<std::size_t>(k - 1)];
+    if (static_cast<std::size_t>(k) <= w.coverage_pct.size())
+      layer.coverage_pct = w.coverage_pct[static_cast<std::size_t>(k - 1)];
     f.layers.push_back(layer);
   }
   for (const WeldPath& p : w.paths) {
@@ -173,17 +176,17 @@ html::Page weld_layers_report(const WeldLayersJobOptions& options, const WeldLay
   const WeldLayerResult& w = job.weld;
   html::Page page;
   page.job = "weld-layers";
-  page.inputs = {{options.eroded_path, std::to_string(job.eroded_rows) + " x " + std::to_string(job.eroded_cols) +
-                                           " grid"}};
+  page.inputs = {
+      {options.eroded_path, std::to_string(job.eroded_rows) + " x " + std::to_string(job.eroded_cols) + " grid"}};
   if (!options.reference_path.empty()) {
-    page.inputs.push_back({options.reference_path, std::to_string(job.reference_rows) + " x " +
-                                                       std::to_string(job.reference_cols) + " grid"});
+    page.inputs.push_back({options.reference_path,
+                           std::to_string(job.reference_rows) + " x " + std::to_string(job.reference_cols) + " grid"});
   }
   page.options = options_json(options);
   page.verdict = w.ok ? html::Verdict{w.warnings.empty() ? html::Level::kOk : html::Level::kCheck,
                                       std::to_string(w.layers) + " layers, " + std::to_string(w.paths.size()) +
-                                          " paths; damage covered " + std::to_string(std::lround(w.damage_coverage_pct)) +
-                                          " % by layer 1"}
+                                          " paths; damage covered " +
+                                          std::to_string(std::lround(w.damage_coverage_pct)) + " % by layer 1"}
                       : html::Verdict{html::Level::kFail, w.termination + "; no file written"};
   page.warnings = w.warnings;
   page.result = weld_layers_json(options, job);

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/generate_profile.h"
-#include "temp_dir.h"
 #include "report_page_checks.h"
+#include "temp_dir.h"
 
 namespace conform {
 namespace {

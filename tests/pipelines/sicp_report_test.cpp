@@ -8,8 +8,8 @@
 
 #include "conform/pipelines/generate_panel.h"
 #include "conform/pipelines/sicp_json.h"
-#include "temp_dir.h"
 #include "report_page_checks.h"
+#include "temp_dir.h"
 
 namespace conform {
 namespace {

@@ -10,8 +10,8 @@
 #include "conform/pipelines/generate_tube_joint.h"
 #include "conform/pipelines/generate_tube_joint_json.h"
 #include "conform/pipelines/tube_joint_json.h"
-#include "temp_dir.h"
 #include "report_page_checks.h"
+#include "temp_dir.h"
 
 namespace conform {
 namespace {
@@ -96,7 +96,6 @@ TEST(TubeJointReport, MeshesPathAndToolGlyphs) {
   EXPECT_EQ(cut->length_mm, 10.0);  // the standoff
   EXPECT_EQ(page.options["groove_deg"][0].get<double>(), 30.0);
 }
-
 
 }  // namespace
 }  // namespace conform

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/generate_eroded.h"
-#include "temp_dir.h"
 #include "report_page_checks.h"
+#include "temp_dir.h"
 
 namespace conform {
 namespace {
@@ -77,8 +77,8 @@ TEST(WeldLayersReport, SurfaceRimsAndLayersAreTheResults) {
 TEST(WeldLayersReport, BigGridsAreThinnedToTheLimitKeepingTheirBorder) {
   const WeldLayersJobResult& job = shared_run().job;
   const WeldLayersReportFigures f = weld_layers_report_figures(job, 100);
-  EXPECT_EQ(f.stride, 3);                                // ceil(sqrt(651 / 100))
-  ASSERT_EQ(f.surface.vertices.size(), 8u * 11u);        // rows 0, 3, ..., 18, 20; columns 0, 3, ..., 30
+  EXPECT_EQ(f.stride, 3);                          // ceil(sqrt(651 / 100))
+  ASSERT_EQ(f.surface.vertices.size(), 8u * 11u);  // rows 0, 3, ..., 18, 20; columns 0, 3, ..., 30
   EXPECT_EQ(f.surface.vertices.back(), job.eroded.at(20, 30));
   EXPECT_EQ(f.surface.faces.size(), 2u * 7u * 10u);
 }

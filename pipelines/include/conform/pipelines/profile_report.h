@@ -33,13 +33,13 @@ struct ProfileStraightFrame {
 struct ProfileFeatureFigure {
   std::string id;
   std::string type;
-  std::vector<Eigen::Vector3d> nominal;  // the sampled outline on the straight profile
-  std::vector<Eigen::Vector3d> mapped;   // the Result's mapped outline (the same points)
-  Eigen::Vector2d designed = Eigen::Vector2d::Zero();        // (Tx, Ty): the centre, or the first vertex
-  Eigen::Vector3d nominal_at = Eigen::Vector3d::Zero();       // that point on the straight profile
-  Eigen::Vector3d mapped_at = Eigen::Vector3d::Zero();        // and where it is cut
-  double displacement_mm = 0.0;      // |mapped_at - nominal_at|
-  double max_displacement_mm = 0.0;  // over the outline and the centre
+  std::vector<Eigen::Vector3d> nominal;                  // the sampled outline on the straight profile
+  std::vector<Eigen::Vector3d> mapped;                   // the Result's mapped outline (the same points)
+  Eigen::Vector2d designed = Eigen::Vector2d::Zero();    // (Tx, Ty): the centre, or the first vertex
+  Eigen::Vector3d nominal_at = Eigen::Vector3d::Zero();  // that point on the straight profile
+  Eigen::Vector3d mapped_at = Eigen::Vector3d::Zero();   // and where it is cut
+  double displacement_mm = 0.0;                          // |mapped_at - nominal_at|
+  double max_displacement_mm = 0.0;                      // over the outline and the centre
 };
 
 struct ProfileReportFigures {

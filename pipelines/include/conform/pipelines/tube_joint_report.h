@@ -19,11 +19,11 @@ namespace conform {
 constexpr std::size_t kTubeJointReportGlyphs = 180;
 
 struct TubeJointReportFigures {
-  Mesh leg_S;                              // the leg posed into S by T_S_L (empty without keep_geometry)
-  std::vector<Eigen::Vector3d> path;       // the seam in S, closed: ends on its first point (empty when !ok)
-  ReportGlyphs cut;                        // at the cutting tool's position p_c, direction d_c (Eq. 9)
-  ReportGlyphs weld;                       // at the welding torch's position p_w, direction d_w (Eq. 11)
-  double cut_standoff_mm = 0.0;            // glyph length: from the tool to the seam
+  Mesh leg_S;                         // the leg posed into S by T_S_L (empty without keep_geometry)
+  std::vector<Eigen::Vector3d> path;  // the seam in S, closed: ends on its first point (empty when !ok)
+  ReportGlyphs cut;                   // at the cutting tool's position p_c, direction d_c (Eq. 9)
+  ReportGlyphs weld;                  // at the welding torch's position p_w, direction d_w (Eq. 11)
+  double cut_standoff_mm = 0.0;       // glyph length: from the tool to the seam
   double weld_standoff_mm = 0.0;
   // Along the path (x: azimuth phi in degrees, from the toe).
   std::vector<double> azimuth_deg, dihedral_deg, groove_deg, weld_deg;
