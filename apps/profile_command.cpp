@@ -10,7 +10,9 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/profile.h"
 #include "conform/pipelines/profile_json.h"
+#include "conform/pipelines/profile_report.h"
 #include "number_list.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -59,22 +61,29 @@ class ProfileCommand : public Command {
     c.add_option("--noise", request_.noise_mm, "Edge sensor noise sigma per coordinate, mm (0: estimate it)");
     c.add_option("--out", request_.out_path,
                  "CSV to write: id,i,tx_mm,ty_mm,x_mm,y_mm,z_mm,nx,ny,nz (web normal),dx,dy,dz (cut direction)");
+    add_report_option(c, report_);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({request_.edge_path, request_.features_path, request_.second_edge_path});
-    files.add_output(request_.out_path);
+    files.add_outputs({request_.out_path, report_});
   }
 
   int run() override {
     if (web_->count() > 0) request_.web_normal = parse_web_normal(web_normal_);
-    const ProfileJobOptions options = profile_job_options(request_);
+    ProfileJobOptions options = profile_job_options(request_);
+    options.keep_geometry = !report_.empty();
     const ProfileJobResult result = run_profile(options);
     if (json_) {
       print_json(profile_json(options, result));
     } else {
       print_text(result);
+    }
+    if (!report_.empty()) {
+      html::Page page = profile_report(options, result);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& w : result.compensation.warnings) warn("profile: " + w);
     if (!result.compensation.ok) {
@@ -120,6 +129,7 @@ class ProfileCommand : public Command {
   ProfileRequest request_;
   std::string web_normal_ = "0,0,1";
   CLI::Option* web_ = nullptr;
+  std::string report_;
   bool json_ = false;
 };
 

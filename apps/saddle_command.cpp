@@ -8,6 +8,8 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/saddle.h"
 #include "conform/pipelines/saddle_json.h"
+#include "conform/pipelines/saddle_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -44,12 +46,13 @@ class SaddleCommand : public Command {
     speed->needs(period);
     period->needs(speed);
     command.add_option("--out", out_path_, "CSV to write: i,theta_rad,x_mm,y_mm,z_mm,pose_rad,step_mm");
+    add_report_option(command, report_);
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     step_ = step;
     speed_ = speed;
   }
 
-  void declare_files(OutputSet& files) override { files.add_output(out_path_); }
+  void declare_files(OutputSet& files) override { files.add_outputs({out_path_, report_}); }
 
   int run() override {
     if (step_->count() > 0) request_.step_deg = step_deg_;
@@ -64,6 +67,11 @@ class SaddleCommand : public Command {
       print_json(saddle_json(request_, result));
     } else {
       print_text(result);
+    }
+    if (!report_.empty()) {
+      html::Page page = saddle_report(request_, options, result);
+      page.date = report_date();
+      write_report(report_, page);
     }
     if (!result.saddle.converged) {
       warn("saddle: " + result.saddle.termination + "; no file written");
@@ -101,6 +109,7 @@ class SaddleCommand : public Command {
   double speed_mm_per_s_ = 0.0;
   double period_s_ = 0.0;
   std::string out_path_;
+  std::string report_;
   bool json_ = false;
   CLI::Option* step_ = nullptr;
   CLI::Option* speed_ = nullptr;

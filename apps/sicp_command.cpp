@@ -10,6 +10,8 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/sicp.h"
 #include "conform/pipelines/sicp_json.h"
+#include "conform/pipelines/sicp_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -78,6 +80,7 @@ class SicpCommand : public Command {
     c.add_option("--out-rows", options_.out_rows_path,
                  "Write each row's correction (across the edge, along the tool axis, along the path, mm) and its "
                  "confidence (CSV), with the trajectory");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -86,7 +89,8 @@ class SicpCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs({options_.contour_path, options_.scan_path, options_.trajectory_path, options_.surface_path,
                       options_.truth_path});
-    files.add_outputs({options_.out_trajectory_path, options_.out_rows_path, options_.cad.save_mesh_path});
+    files.add_outputs(
+        {options_.out_trajectory_path, options_.out_rows_path, options_.cad.save_mesh_path, report_path_});
   }
 
   int run() override {
@@ -95,6 +99,7 @@ class SicpCommand : public Command {
     o.sicp.joint_refinement = !no_joint_;
     options_.progress = stderr_progress(quiet_);
     options_.cad.progress = options_.progress;
+    options_.keep_geometry = !report_path_.empty();
     const SicpJobResult r = run_sicp(options_);
     warn_all(r.warnings);
     if (json_) {
@@ -102,6 +107,11 @@ class SicpCommand : public Command {
     } else {
       print_cad_text(r.cad_inputs);
       print_text(r);
+    }
+    if (!report_path_.empty()) {
+      html::Page page = sicp_report(options_, r);
+      page.date = report_date();
+      write_report(report_path_, page);
     }
     if (!r.compensation.trusted) {
       std::fprintf(stderr, "conform: the compensated path cannot be trusted: %s; no trajectory written\n",
@@ -156,6 +166,7 @@ class SicpCommand : public Command {
   }
 
   SicpJobOptions options_;
+  std::string report_path_;
   std::string model_ = "sicp";
   std::string fit_ = "parabola";
   std::string normals_ = options_.compensation.normals.from_scan ? "scan" : "rotate";

@@ -10,7 +10,9 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/tube_joint.h"
 #include "conform/pipelines/tube_joint_json.h"
+#include "conform/pipelines/tube_joint_report.h"
 #include "number_list.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -94,6 +96,7 @@ class TubeJointCommand : public Command {
                  "CSV: phi_rad,x_mm,y_mm,z_mm,tx,ty,tz,nsx,nsy,nsz,nlx,nly,nlz (stub frame)");
     c.add_option("--out-cut", o_.out_cut, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz cutting poses");
     c.add_option("--out-weld", o_.out_weld, "CSV: phi_rad,x_mm,y_mm,z_mm,dx,dy,dz welding poses");
+    add_report_option(c, report_);
     add_cad_options(c, o_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -105,7 +108,7 @@ class TubeJointCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs(
         {o_.leg_path, o_.stub_path, o_.leg_pose_path, o_.leg_markers_path, o_.stub_markers_path, groove_table_});
-    files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld, o_.cad.save_mesh_path});
+    files.add_outputs({o_.out_path, o_.out_cut, o_.out_weld, o_.cad.save_mesh_path, report_});
   }
 
   int run() override {
@@ -125,6 +128,7 @@ class TubeJointCommand : public Command {
     TubeJointJobOptions o = tube_joint_job_options(request);
     o.solve.progress = stderr_progress(quiet_ || json_);
     o.cad.progress = o.solve.progress;
+    o.keep_geometry = !report_.empty();
     const TubeJointJobResult r = run_tube_joint(o);
     const TubeJointSolution& s = r.solution;
     if (json_) {
@@ -132,6 +136,11 @@ class TubeJointCommand : public Command {
     } else {
       print_cad_text(r.cad_inputs);
       print_text(r);
+    }
+    if (!report_.empty()) {
+      html::Page page = tube_joint_report(o, r);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& w : s.warnings) warn("tube-joint: " + w);
     if (!s.ok && s.check.condition == "safety") {
@@ -192,6 +201,7 @@ class TubeJointCommand : public Command {
   }
 
   TubeJointJobOptions o_;
+  std::string report_;
   double pitch_deg_ = 90.0;
   double step_deg_ = 1.0;
   double step_mm_ = 5.0;

@@ -9,6 +9,8 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/weld_layers.h"
 #include "conform/pipelines/weld_layers_json.h"
+#include "conform/pipelines/weld_layers_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -47,12 +49,13 @@ class WeldLayersCommand : public Command {
     c.add_option("--min-crater-coverage", o_.weld.min_crater_coverage_pct,
                  "Least share of any one crater (larger than a bead) covered by layer 1, %; below: exit 1 naming it");
     c.add_option("--out", o_.out_path, "CSV to write: layer,path,i,x_mm,y_mm,z_mm,nx,ny,nz");
+    add_report_option(c, report_);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
   void declare_files(OutputSet& files) override {
     files.add_inputs({o_.eroded_path, o_.reference_path});
-    files.add_output(o_.out_path);
+    files.add_outputs({o_.out_path, report_});
   }
 
   int run() override {
@@ -60,12 +63,18 @@ class WeldLayersCommand : public Command {
       throw Error("weld-layers: give --reference FILE or --reference-from-border");
     }
     o_.weld.bias = bias_ == "remove" ? BiasMode::kRemove : bias_ == "keep" ? BiasMode::kKeep : BiasMode::kCheck;
+    o_.keep_geometry = !report_.empty();
     const WeldLayersJobResult job = run_weld_layers(o_);
     const WeldLayerResult& w = job.weld;
     if (json_) {
       print_json(weld_layers_json(o_, job));
     } else {
       print_text(job);
+    }
+    if (!report_.empty()) {
+      html::Page page = weld_layers_report(o_, job);
+      page.date = report_date();
+      write_report(report_, page);
     }
     for (const std::string& text : w.warnings) warn("weld-layers: warning: " + text);
     if (!w.ok) {
@@ -114,6 +123,7 @@ class WeldLayersCommand : public Command {
   }
 
   WeldLayersJobOptions o_;
+  std::string report_;
   std::string bias_ = "check";
   bool from_border_ = false;
   bool json_ = false;

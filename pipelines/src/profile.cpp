@@ -188,6 +188,7 @@ ProfileJobResult run_profile(const ProfileJobOptions& options) {
   job.compensation =
       compensate_profile(edge, features, options.compensation, options.second_edge_path.empty() ? nullptr : &second,
                          options.edge_path, options.second_edge_path);
+  if (options.keep_geometry) job.edge = edge, job.second_edge = second;
   const std::string text = profile_csv(job.compensation);
   job.out_rows = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) - 1;
   if (!options.out_path.empty() && job.compensation.ok) {

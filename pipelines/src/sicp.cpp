@@ -194,6 +194,11 @@ SicpJobResult run_sicp(const SicpJobOptions& options) {
   for (const std::string& w : result.compensation.registration.warnings) result.warnings.push_back(w);
   for (const std::string& w : result.compensation.check.warnings) result.warnings.push_back(w);
   if (truth) result.error = trajectory_error(result.compensation.trajectory, *truth, nominal);
+  if (options.keep_geometry) {
+    result.contour = contour;
+    result.scan = scan;
+    result.nominal = nominal;
+  }
   if (result.compensation.trusted) {
     report(options.progress, "write", 0.0);
     if (!options.out_trajectory_path.empty()) {

@@ -337,6 +337,7 @@ TubeJointJobResult run_tube_joint(const TubeJointJobOptions& options) {
   check_units(options, leg, stub, &result);
   result.leg_faces = leg.faces.size();
   result.stub_faces = stub.faces.size();
+  if (options.keep_geometry) result.leg_L = leg, result.stub_S = stub;
   result.solution = solve_tube_joint(leg, stub, result.T_S_L, options.solve);
   if (!result.solution.ok) return result;
   const ToolPaths& tools = result.solution.tools;

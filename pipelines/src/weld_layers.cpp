@@ -32,6 +32,7 @@ WeldLayersJobResult run_weld_layers(const WeldLayersJobOptions& options) {
   WeldLayersJobResult result;
   result.eroded_rows = eroded.rows, result.eroded_cols = eroded.cols;
   result.reference_rows = reference.rows, result.reference_cols = reference.cols;
+  if (options.keep_geometry) result.eroded = eroded;
   result.weld = plan_weld_layers(BezierNetwork(eroded), BezierNetwork(reference), options.weld);
   if (result.weld.ok && !options.out_path.empty()) {
     write_file_atomically(options.out_path, weld_layers_csv(result.weld));

@@ -105,6 +105,17 @@ SceneObject& Scene::add_polyline(const std::string& name, const std::vector<Eige
   return add(std::move(o));
 }
 
+SceneObject& Scene::add_polylines(const std::string& name, const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                                  Rgb colour) {
+  std::vector<Eigen::Vector3d> pairs;
+  for (const std::vector<Eigen::Vector3d>& line : lines) {
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) pairs.push_back(line[i]), pairs.push_back(line[i + 1]);
+  }
+  SceneObject& o = add_polyline(name, pairs, colour);
+  o.pieces = true;
+  return o;
+}
+
 SceneObject& Scene::add_arrows(const std::string& name, const std::vector<Eigen::Vector3d>& origins,
                                const std::vector<Eigen::Vector3d>& directions, double length_mm, Rgb colour) {
   if (directions.size() != origins.size()) {
@@ -177,6 +188,19 @@ std::vector<std::string> Scene::notes(const std::vector<SceneObject>& thinned) c
 SceneObject thin_by_stride(const SceneObject& object, std::size_t max_items) {
   const std::size_t n = object.positions.size();
   if (n <= max_items || max_items == 0) return object;
+  if (object.pieces) {  // every k-th segment, kept whole
+    const std::size_t k = (n + max_items - 1) / max_items;
+    SceneObject out = object;
+    out.positions.clear();
+    out.colours.clear();
+    for (std::size_t i = 0; i + 1 < n; i += 2 * k) {
+      for (std::size_t j = i; j < i + 2; ++j) {
+        out.positions.push_back(object.positions[j]);
+        if (!object.colours.empty()) out.colours.push_back(object.colours[j]);
+      }
+    }
+    return out;
+  }
   const std::size_t k = (n + max_items - 1) / max_items;
   SceneObject out = object;
   out.positions.clear();

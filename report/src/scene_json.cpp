@@ -83,7 +83,8 @@ std::string scene_json(const Scene& scene, const std::vector<SceneObject>& thinn
                         {"size_px", o.size_px},
                         {"opacity", o.opacity},
                         {"length", o.length_mm},
-                        {"closed", o.closed}};
+                        {"closed", o.closed},
+                        {"pieces", o.pieces}};
     if (!o.colours.empty()) j["colours"] = colours_base64(o.colours);
     if (!o.triangles.empty()) {
       j["triangles"] = o.triangles.size();

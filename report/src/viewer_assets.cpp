@@ -86,6 +86,7 @@ const char* viewer_js() {
     }
     if (o.kind === 'polyline') {
       var line_material = new THREE.LineBasicMaterial(common);
+      if (o.pieces) return new THREE.LineSegments(g, line_material);
       return o.closed ? new THREE.LineLoop(g, line_material) : new THREE.Line(g, line_material);
     }
     g.setIndex(new THREE.BufferAttribute(new Uint32Array(bytes_of(o.indices)), 1));

@@ -28,6 +28,7 @@ struct ProfileJobOptions {
   std::string second_edge_path;             // optional: the other edge, for a local web direction (twist)
   ProfileCompensationOptions compensation;  // model, checks, web normal, chord tolerance
   std::string out_path;                     // CSV to write, whole or not at all; empty: write nothing
+  bool keep_geometry = false;                 // keep the edge points in the result (for a report)
 };
 
 struct ProfileJobResult {
@@ -36,6 +37,9 @@ struct ProfileJobResult {
   std::size_t second_edge_points = 0;
   std::size_t out_rows = 0;  // rows of the output CSV
   std::string out_path;      // the file written; empty when none was asked for or the run did not succeed
+  // With keep_geometry (else empty): the edges as read, for a report (pipelines/profile_report.h).
+  std::vector<Eigen::Vector3d> edge;
+  std::vector<Eigen::Vector3d> second_edge;
 };
 
 // The points of an edge CSV. Throws conform::Error naming the file (and the line) when it cannot be read or lacks

@@ -66,6 +66,7 @@ struct SicpJobOptions {
   std::string out_rows_path;        // optional: per-row correction split and confidence (CSV), written with the above
   SicpCompensationOptions compensation;
   ProgressFn progress;  // "read", the registration's stages, "normals", "write"
+  bool keep_geometry = false;  // keep the contour, the scan and the nominal trajectory in the result (for a report)
   bool IsValid(std::string* error) const;
 };
 
@@ -82,6 +83,10 @@ struct SicpJobResult {
   std::vector<CadReport> cad_inputs;  // the surface, when it was CAD
   std::string out_trajectory_path;  // written; empty when not
   std::string out_rows_path;        // written; empty when not
+  // With keep_geometry (else empty): what was read, for a report (pipelines/sicp_report.h).
+  Polyline contour;
+  std::vector<Eigen::Vector3d> scan;
+  Trajectory nominal;
 };
 
 // Throws conform::Error for bad input (files, columns, rows, a contour mesh without boundary); not converging is

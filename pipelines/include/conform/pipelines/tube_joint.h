@@ -106,6 +106,7 @@ struct TubeJointJobOptions {
   std::string out_path;  // CSV of the quintuplets; empty: none
   std::string out_cut;   // CSV of the cutting poses; empty: none
   std::string out_weld;  // CSV of the welding poses; empty: none
+  bool keep_geometry = false;  // keep both meshes (in their frames, markers applied) in the result (for a report)
 
   bool IsValid(std::string* error) const;
 };
@@ -126,6 +127,9 @@ struct TubeJointJobResult {
   // vertices from each tube's axis, in its frame), mm.
   double stub_radius_mm = 0.0;
   double leg_radius_mm = 0.0;
+  // With keep_geometry (else empty): the leg in L and the stub in S as intersected (pipelines/tube_joint_report.h).
+  Mesh leg_L;
+  Mesh stub_S;
 };
 
 // The frame of a scanned tube from a marker file and its cylinder fit (above). Throws conform::Error naming the file

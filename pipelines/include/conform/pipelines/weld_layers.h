@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "conform/fitting/surface_grid.h"
 #include "conform/toolpath/weld_layers.h"
 
 namespace conform {
@@ -18,6 +19,7 @@ struct WeldLayersJobOptions {
   std::string reference_path;  // reference grid CSV; empty: the Coons patch of the eroded grid's border
   WeldLayerOptions weld;
   std::string out_path;        // CSV to write, whole or not at all; empty: write nothing
+  bool keep_geometry = false;    // keep the eroded grid in the result (for a report)
 };
 
 struct WeldLayersJobResult {
@@ -25,6 +27,7 @@ struct WeldLayersJobResult {
   int eroded_rows = 0, eroded_cols = 0;
   int reference_rows = 0, reference_cols = 0;
   std::string out_path;  // the file written; empty when none was asked for or the plan did not succeed
+  SurfaceGrid eroded;    // with keep_geometry (else empty), as read (pipelines/weld_layers_report.h)
 };
 
 // Throws conform::Error naming the file and row (a hole, a ragged row, a bad number) or the bad option. A run that

@@ -47,6 +47,7 @@ struct SceneObject {
   double opacity = 1.0;      // mesh: (0, 1]
   double length_mm = 1.0;    // arrows: drawn length
   bool closed = false;       // polyline: the last point joins the first
+  bool pieces = false;       // polyline: positions are pairs, each a segment (several lines in one layer)
   std::size_t original_count = 0;  // points or triangles before thinning
 };
 
@@ -100,6 +101,9 @@ class Scene {
   SceneObject& add_mesh(const std::string& name, const Mesh& mesh, Rgb colour, double opacity = 1.0);
   SceneObject& add_polyline(const std::string& name, const std::vector<Eigen::Vector3d>& points, Rgb colour,
                             bool closed = false);
+  // Several open lines as one layer (e.g. the paths of one weld layer): stored as segment pairs (pieces).
+  SceneObject& add_polylines(const std::string& name, const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                             Rgb colour);
   // Glyphs: a line of `length_mm` from each origin along its direction (normalised here; zero ones are skipped),
   // with a dot at the origin. For tool normals, cut and weld directions.
   SceneObject& add_arrows(const std::string& name, const std::vector<Eigen::Vector3d>& origins,
