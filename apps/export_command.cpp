@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "command.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/export.h"
 #include "conform/pipelines/export_json.h"
@@ -16,8 +17,6 @@
 
 namespace conform::app {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 class ExportCommand : public Command {
  public:

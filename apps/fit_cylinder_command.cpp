@@ -9,6 +9,7 @@
 
 #include "cad_options.h"
 #include "command.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/fit_cylinder.h"
 #include "conform/pipelines/fit_cylinder_json.h"
@@ -19,7 +20,6 @@
 namespace conform::app {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 double radians(double deg) { return deg / 180.0 * kPi; }
 double degrees(double rad) { return rad / kPi * 180.0; }
 

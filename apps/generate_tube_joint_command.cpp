@@ -9,14 +9,13 @@
 
 #include "command.h"
 #include "number_list.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube_joint_json.h"
 #include "terminal.h"
 
 namespace conform::app {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 std::array<double, 4> parse_bump(const std::string& text, const std::string& flag) {
   const std::vector<double> v = parse_numbers(text, 4, flag, "AZ_DEG,Z_MM,HEIGHT_MM,RADIUS_MM");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "command.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/saddle.h"
 #include "conform/pipelines/saddle_json.h"
@@ -15,7 +16,6 @@
 namespace conform::app {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 double degrees(double rad) { return rad / kPi * 180.0; }
 
 class SaddleCommand : public Command {

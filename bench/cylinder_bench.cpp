@@ -24,16 +24,18 @@
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include "bench_timer.h"
+#include "conform/core/constants.h"
 #include "conform/core/normals.h"
 #include "conform/datasets/tube.h"
 #include "conform/fitting/cylinder.h"
+
+using conform::kPi;
 
 namespace {
 
 using conform::bench::best_cpu_seconds;
 using conform::bench::best_seconds;
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 constexpr int kRepeats = 3;
 

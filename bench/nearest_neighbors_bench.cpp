@@ -23,8 +23,11 @@
 #include <nanoflann.hpp>
 
 #include "bench_timer.h"
+#include "conform/core/constants.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/core/normals.h"
+
+using conform::kPi;
 
 namespace {
 
@@ -34,7 +37,6 @@ using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
 
 constexpr int kRepeats = 3;
 constexpr std::size_t kQueries = 100000;
-constexpr double kPi = 3.14159265358979323846;
 
 PclCloud uniform_cloud(std::size_t n, std::uint32_t seed) {
   std::mt19937 rng(seed);

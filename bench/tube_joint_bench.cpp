@@ -13,16 +13,18 @@
 #include <omp.h>
 
 #include "bench_timer.h"
+#include "conform/core/constants.h"
 #include "conform/datasets/tube_surface.h"
 #include "conform/pipelines/generate_tube_joint.h"
 #include "conform/pipelines/tube_joint.h"
 #include "conform/toolpath/intersection_graph.h"
 #include "conform/toolpath/saddle_curve.h"
 
+using conform::kPi;
+
 namespace {
 
 using conform::bench::best_seconds;
-constexpr double kPi = 3.141592653589793;
 
 }  // namespace
 

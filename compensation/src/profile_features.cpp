@@ -6,12 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // One piece of an outline: p(tau) on the flat profile for tau in [0, 1], and how many equal steps to start with.
 struct Piece {

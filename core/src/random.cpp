@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 
 namespace {
@@ -15,8 +17,6 @@ std::uint64_t splitmix64(std::uint64_t& x) {
 }
 
 std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 }  // namespace
 

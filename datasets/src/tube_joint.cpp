@@ -5,14 +5,13 @@
 #include <limits>
 #include <sstream>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/datasets/tube.h"
 #include "conform/datasets/tube_surface.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // The stub as generate_tube makes it for a length: a closed inner tube whose middle is at z_S = length / 2, its
 // bumps moved from z_S into that tube frame, so that the surface in S does not depend on the length.

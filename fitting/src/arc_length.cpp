@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <string>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr int kNodes = 10;
 
 struct GaussLegendreRule {

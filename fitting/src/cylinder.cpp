@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/normals.h"
 #include "cylinder_checks.h"
@@ -19,7 +20,6 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // Below this share of the bounding-box diagonal a length counts as zero (noise-free data, degenerate spreads).
 constexpr double kRelativeFloor = 1e-9;
 

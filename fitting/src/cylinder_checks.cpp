@@ -10,12 +10,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
 #include "conform/core/nearest_neighbors.h"
 
 namespace conform::detail {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMadToSigma = 1.482602218505602;  // 1 / Phi^-1(3/4)
 
 double median_in_place(std::vector<double>& values) {

@@ -2,13 +2,13 @@
 
 #include <filesystem>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/json_values.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // A larger turn between two consecutive frames is a wrist flip or a corner turned on the spot: warned about.
 constexpr double kLargeStepDeg = 30.0;
 

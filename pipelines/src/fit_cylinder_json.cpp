@@ -1,5 +1,6 @@
 #include "conform/pipelines/fit_cylinder_json.h"
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/cad_json.h"
 
 #include "conform/pipelines/json_values.h"
@@ -7,7 +8,6 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 double degrees(double rad) { return rad / kPi * 180.0; }
 
 }  // namespace

@@ -5,14 +5,13 @@
 #include <filesystem>
 #include <limits>
 
+#include "conform/core/constants.h"
 #include "conform/evaluation/statistics.h"
 #include "conform/report/deviation_view.h"
 #include "conform/report/scene.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 html::Table cylinder_table(const CylinderFitResult& f) {
   html::Table t{"Cylinder", {"figure", "value", "std"}, {}};

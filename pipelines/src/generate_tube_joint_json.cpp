@@ -1,9 +1,10 @@
 #include "conform/pipelines/generate_tube_joint_json.h"
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 double radians(double deg) { return deg / 180.0 * kPi; }
 
 }  // namespace

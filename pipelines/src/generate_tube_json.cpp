@@ -1,11 +1,11 @@
 #include "conform/pipelines/generate_tube_json.h"
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // deg / 180 first, so that 90 deg is exactly pi / 2.
 double radians(double deg) { return deg / 180.0 * kPi; }
 

@@ -1,12 +1,12 @@
 #include "conform/pipelines/saddle_json.h"
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/json_values.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // deg / 180 first, so that 90 deg is exactly pi / 2 (the paper's joint) and 45 deg exactly pi / 4.
 double radians(double deg) { return deg / 180.0 * kPi; }
 double degrees(double rad) { return rad / kPi * 180.0; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "conform/core/constants.h"
 #include "conform/toolpath/saddle_curve.h"
 
 #include "report_pages.h"
@@ -11,7 +12,6 @@ namespace conform {
 namespace {
 
 constexpr double kDegPerRad = 57.29577951308232;
-constexpr double kPi = 3.141592653589793;
 
 constexpr int kAround = 96;  // context meshes: azimuth steps of the pipe, grid steps of the leg patch
 

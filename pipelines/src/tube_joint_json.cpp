@@ -1,5 +1,6 @@
 #include "conform/pipelines/tube_joint_json.h"
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/cad_json.h"
 
 #include <utility>
@@ -10,7 +11,6 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 double radians(double deg) { return deg / 180.0 * kPi; }
 double degrees(double rad) { return rad / kPi * 180.0; }
 

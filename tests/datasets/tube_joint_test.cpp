@@ -7,14 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/datasets/tube_surface.h"
 #include "conform/pipelines/generate_tube_joint.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 TubeJointOptions options() {
   TubeJointSpec spec;

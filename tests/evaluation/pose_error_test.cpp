@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Isometry3d pose(double angle, const Eigen::Vector3d& axis, const Eigen::Vector3d& t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

@@ -9,14 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/datasets/tube.h"
 #include "conform/evaluation/deviation.h"
 #include "conform/evaluation/statistics.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TubeOptions patch(double edge_mm) {
   TubeOptions t;

@@ -13,12 +13,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // The test's own deterministic Gaussian draws (Box-Muller on a 64-bit LCG).
 class Noise {

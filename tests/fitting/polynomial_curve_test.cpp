@@ -11,12 +11,11 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 const std::vector<Eigen::Vector3d> kCubic = {
     {1200.0, -35.0, 410.0}, {850.0, 12.0, -3.0}, {-140.0, 60.0, 8.5}, {55.0, -20.0, -2.25}};

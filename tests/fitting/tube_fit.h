@@ -8,13 +8,13 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
 #include "conform/core/normals.h"
 #include "conform/datasets/tube.h"
 #include "conform/fitting/cylinder.h"
 
 namespace conform::test {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 
 // 50k points on the generator's default tube (R 150 mm, 300 mm long), posed away from the origin on a tilted axis.

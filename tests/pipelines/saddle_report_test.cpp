@@ -8,14 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/saddle_json.h"
 #include "conform/toolpath/saddle_curve.h"
 #include "report_page_checks.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 SaddleRequest table1() {
   SaddleRequest r;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/generate_tube_joint.h"
 #include "conform/pipelines/generate_tube_joint_json.h"
 #include "conform/pipelines/tube_joint_json.h"
@@ -15,8 +16,6 @@
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 TEST(TubeJointReport, MeshesPathAndToolGlyphs) {
   const test::TempDir dir;

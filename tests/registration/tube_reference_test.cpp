@@ -10,14 +10,13 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/datasets/tube.h"
 #include "conform/datasets/tube_surface.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 struct Scene {
   TubeScan scan;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "conform/core/constants.h"
 #include "conform/core/mesh.h"
 
 namespace conform::test {
@@ -12,7 +13,6 @@ namespace conform::test {
 // `rings` latitude bands (>= 2) by `segments` meridians (>= 3); radius(polar, azimuth) in mm, polar 0 at +z.
 // The poles are shared by a fan of faces; faces wind outward.
 inline Mesh lat_long_sphere(int rings, int segments, const std::function<double(double, double)>& radius) {
-  constexpr double kPi = 3.14159265358979323846;
   Mesh m;
   m.vertices.emplace_back(0, 0, radius(0, 0));
   for (int i = 1; i < rings; ++i) {

@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // A closed polygon through the given points, welded in a shuffled vertex order (so the ordering has work to do).
 IntersectionGraph polygon(const std::vector<Eigen::Vector3d>& points, unsigned seed = 1) {

@@ -8,10 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 
 TEST(GrooveTable, QuartersAreTheFourRowTable) {

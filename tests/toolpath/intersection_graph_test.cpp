@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // A crossing named by (mesh A edge (i, i + 1), triangle 0), at a point of a circle of radius 10 at azimuth i.
 EdgeCrossing crossing(int i, int n, int curve = 0) {

@@ -6,10 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kTol = 1e-12;
 
 TEST(JointFrames, RightAngleJointPutsTheStubOnTheXAxisPointingAtTheLeg) {

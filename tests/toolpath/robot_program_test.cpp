@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/toolpath/robot_angles.h"
 #include "conform/toolpath/robot_program.h"
@@ -17,7 +18,6 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kPositionTol = 1e-6;  // mm
 constexpr double kAxisTol = 1e-9;      // rad
 

@@ -9,13 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/toolpath/joint_frames.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // Xue et al. (2018), Table 1 "The interpolation data" (R = 600 mm, r = 150 mm, phi0 = pi/4, steps of pi/20), as
 // printed: rotation angle theta (rad), x, y, z (mm), torch pose angle (rad). Source: the article's web edition,

@@ -1,11 +1,10 @@
 #pragma once
 // A saddle joint for the saddle tests: leg radius R, pipe radius r (mm), pitch (deg), offset (mm).
 
+#include "conform/core/constants.h"
 #include "conform/toolpath/saddle_curve.h"
 
 namespace conform::test {
-
-constexpr double kPi = 3.141592653589793;
 
 inline SaddleGeometry saddle_geometry(double R, double r, double pitch_deg, double offset) {
   SaddleGeometry g;

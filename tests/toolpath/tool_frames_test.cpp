@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/saddle.h"
@@ -18,8 +19,6 @@
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // A right-handed orthonormal frame with the given z.
 void expect_frame(const ToolFrame& f, const Eigen::Vector3d& z, double tol) {

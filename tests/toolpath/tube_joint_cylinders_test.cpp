@@ -8,13 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/toolpath/saddle_curve.h"
 #include "tube_joint_fixture.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 
 struct Measured {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/datasets/tube_surface.h"
 #include "conform/toolpath/saddle_curve.h"
 #include "tube_joint_fixture.h"
@@ -14,7 +15,6 @@
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 
 TubeJointOptions deformed(const test::JointCase& c) {

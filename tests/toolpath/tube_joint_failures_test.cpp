@@ -6,13 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/datasets/tube.h"
 #include "tube_joint_fixture.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 TubeJointSolution solve(const Mesh& leg_L, const Mesh& stub_S, const Eigen::Isometry3d& T_S_L) {
   return solve_tube_joint(leg_L, stub_S, T_S_L, {});

@@ -17,10 +17,11 @@
 
 #include "tube_joint_fixture.h"
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 
 struct Corner {

@@ -5,14 +5,12 @@
 #include <sstream>
 #include <limits>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/fitting/bspline_fit.h"
 
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2.0 * kPi;
 
 double cross_z(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.x() * b.y() - a.y() * b.x(); }
 double turn(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

@@ -6,11 +6,10 @@
 
 #include <Eigen/Dense>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2.0 * kPi;
 
 }  // namespace
 

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <utility>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 std::vector<std::vector<std::int32_t>> adjacency(const IntersectionGraph& graph) {
   std::vector<std::vector<std::int32_t>> neighbours(graph.vertices.size());

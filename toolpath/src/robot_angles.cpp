@@ -4,10 +4,11 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // Below this cos(B) the first angle is not defined by the matrix (gimbal lock); above it, the third angle is solved
 // from the first two so that the three compose to the matrix exactly, whatever the conditioning of the first.
 constexpr double kLock = 1e-12;

@@ -5,13 +5,12 @@
 #include <limits>
 #include <sstream>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 // A step that ends within this fraction of itself from 2 pi lands on 2 pi as a full step.
 constexpr double kLandingTolerance = 1e-9;
 // Per-step solves stop when the step changes by less than this many rounding units of the azimuth it reaches: below

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/fitting/arc_length.h"
 
@@ -13,7 +14,6 @@ namespace conform {
 namespace {
 
 constexpr double kHalfPi = 1.5707963267948966;
-constexpr double kPi = 3.141592653589793;
 // Below this pitch the seam stretches by 1 / sin(pitch) > 57: a brace that lies almost along the leg.
 constexpr double kMinPitchRad = kPi / 180.0;
 // The seam's arc length: relative tolerance of the adaptive quadrature (fitting/arc_length.h). Near a sharp turn the

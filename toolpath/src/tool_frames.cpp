@@ -7,12 +7,12 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // A tangent whose part off z is shorter than this fraction of it is taken as parallel to z: its direction off z is
 // rounding noise.
 constexpr double kParallel = 1e-9;

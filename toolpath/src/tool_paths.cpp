@@ -5,12 +5,12 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kHalfPi = kPi / 2;
 
 bool is_angle(double a) { return std::isfinite(a) && a >= 0.0 && a < kHalfPi; }
