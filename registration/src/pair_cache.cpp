@@ -21,7 +21,7 @@ int PairCache::nearest(const KdTree& tree, std::size_t i, const Eigen::Vector3f&
   if (reach_[i] >= 0.0 && (q - anchor_[i]).norm() < reach_[i]) return index_[i];
   thread_local std::vector<int> indices;
   thread_local std::vector<float> sq_distances;
-  tree.knn(query, 2, indices, sq_distances);
+  tree.knn_positions(query, 2, indices, sq_distances);
   if (indices.empty()) return -1;
   anchor_[i] = q;
   index_[i] = indices[0];

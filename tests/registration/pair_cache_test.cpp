@@ -43,7 +43,7 @@ TEST(PairCache, NearestPointsAreTheTreesThroughConvergingPoses) {
   for (const Eigen::Isometry3d& T : converging_poses(16, 0.5)) {
     for (std::size_t i = 0; i < scan.vertices.size(); ++i) {
       const Eigen::Vector3f q = (T * scan.vertices[i]).cast<float>();
-      ASSERT_EQ(cache.nearest(tree, i, q), tree.nearest(q)) << i;
+      ASSERT_EQ(cache.nearest(tree, i, q), tree.nearest_position(q)) << i;
     }
   }
 }
