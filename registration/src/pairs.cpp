@@ -23,11 +23,16 @@ void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, doub
                    PairCache* cache, std::size_t i) {
   const Eigen::Vector3f qf = q.cast<float>();
   if (!qf.allFinite()) return;  // beyond float range: nothing of the reference can be near
-  const int j = cache != nullptr ? cache->nearest(reference.tree(), i, qf) : reference.tree().nearest_position(qf);
-  if (j < 0) return;
-  const IcpReference::Sample& s = reference.by_position()[static_cast<std::size_t>(j)];
-  pair.target = s.point;
-  pair.normal = s.normal;
+  const IcpReference::Sample* s = nullptr;
+  if (cache != nullptr) {
+    s = cache->nearest(reference, i, qf);
+  } else {
+    const int j = reference.tree().nearest_position(qf);
+    if (j >= 0) s = &reference.by_position()[static_cast<std::size_t>(j)];
+  }
+  if (s == nullptr) return;
+  pair.target = s->point;
+  pair.normal = s->normal;
   pair.distance = (q - pair.target).norm();
   pair.found = pair.distance <= max_distance_mm;
 }

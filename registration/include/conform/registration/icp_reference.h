@@ -34,7 +34,8 @@ class IcpReference {
   // A point and its normal, stored in the tree's leaf order: by_position()[p] is point tree().leaf_order()[p], so
   // that what KdTree::nearest_position finds for nearby queries is read from nearby memory.
   struct Sample {
-    Eigen::Vector3d point, normal;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   };
   const std::vector<Sample>& by_position() const { return by_position_; }
   bool has_surface() const { return !faces_.empty(); }
