@@ -86,10 +86,10 @@ KdTree tree_over(const Points& points) {
 // Calls fn(position, neighbours) for every point of the tree, in parallel and in the tree's leaf order: near points
 // one after the other, so that each query finds the last one's tree nodes and points still in cache (on a randomly
 // ordered 1M-point tube a Z-curve order of the queries took the normals from 5.0 s to 2.2 s, one thread; the leaf
-// order is coherent the same way and needs no sort: docs/align.md, "Speed"). Neighbours are named by position (kPositions: read from the tree's own
-// storage, contiguous) or by the caller's index, in the same order either way. Each point's result depends only on
-// its own neighbourhood, so the output is the same for any number of threads. An exception inside the loop is
-// carried out of the parallel region and rethrown.
+// order is coherent the same way and needs no sort: docs/align.md, "Speed"). Neighbours are named by position
+// (kPositions: read from the tree's own storage, contiguous) or by the caller's index, in the same order either way.
+// Each point's result depends only on its own neighbourhood, so the output is the same for any number of threads. An
+// exception inside the loop is carried out of the parallel region and rethrown.
 template <bool kPositions, typename Fn>
 void for_each_neighbourhood(int k, const KdTree& tree, Fn&& fn) {
   std::exception_ptr failure;
