@@ -88,6 +88,7 @@ std::vector<Eigen::Vector3d> unique_points(const std::vector<Eigen::Vector3d>& p
   std::size_t capacity = 16;
   while (capacity < 2 * points.size()) capacity *= 2;
   constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+  if (points.size() >= kEmpty) throw Error("more than 4 billion points: too many to merge duplicates");
   std::vector<std::uint32_t> table(capacity, kEmpty);
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size());
