@@ -1,12 +1,27 @@
 #include "conform/core/geometry.h"
+#include "conform/core/z_order.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <utility>
 
 #include "conform/core/error.h"
 
 namespace conform {
 
 namespace {
+
+// Spreads the low 21 bits of v so that bit b moves to bit 3b (the bit interleaving of a Morton code).
+std::uint64_t spread_bits(std::uint64_t v) {
+  v &= 0x1fffffu;
+  v = (v | v << 32) & 0x1f00000000ffffu;
+  v = (v | v << 16) & 0x1f0000ff0000ffu;
+  v = (v | v << 8) & 0x100f00f00f00f00fu;
+  v = (v | v << 4) & 0x10c30c30c30c30c3u;
+  v = (v | v << 2) & 0x1249249249249249u;
+  return v;
+}
 
 template <typename Points, typename Get>
 BoundingBox box_of(const Points& points, Get get) {
@@ -80,6 +95,28 @@ Polyline transformed(const Polyline& polyline_a, const Eigen::Isometry3d& T_b_a)
   Polyline polyline_b = polyline_a;
   for (Eigen::Vector3d& p : polyline_b.points) p = T_b_a * p;
   return polyline_b;
+}
+
+std::vector<std::size_t> z_order(const std::vector<Eigen::Vector3d>& points) {
+  const BoundingBox box = box_of(points, [](const Eigen::Vector3d& p) { return p; });
+  constexpr double kCells = 2097151.0;  // 2^21 - 1 per axis: three axes fill 63 bits
+  // In double, so that the scale of a thin box stays finite; a flat axis (all points equal in it) gets scale 0.
+  const Eigen::Array3d size = box.size().array();
+  const Eigen::Array3d scale = (size > 0.0).select(kCells / size, 0.0);
+  std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::uint64_t key = std::numeric_limits<std::uint64_t>::max();
+    if (points[i].allFinite()) {
+      const Eigen::Array3d cell = ((points[i] - box.min).array() * scale).min(kCells).max(0.0);
+      key = spread_bits(static_cast<std::uint64_t>(cell.x())) | spread_bits(static_cast<std::uint64_t>(cell.y())) << 1 |
+            spread_bits(static_cast<std::uint64_t>(cell.z())) << 2;
+    }
+    keyed[i] = {key, i};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order[i] = keyed[i].second;
+  return order;
 }
 
 }  // namespace conform

@@ -46,7 +46,9 @@ std::uint64_t sort_key(float sq_distance, std::uint32_t index) {
 }
 
 // The k best (distance, index) pairs, kept sorted in the caller's output vectors (no allocation per query).
-// nanoflann reports storage positions; `original` maps them to the caller's indices.
+// nanoflann reports storage positions; `original` maps them to the caller's indices. kPositions: the output names
+// each neighbour by its position rather than its index; the order (ties to the lower index) is the same.
+template <bool kPositions>
 class KnnResult {
  public:
   KnnResult(std::size_t capacity, const std::uint32_t* original, int* indices, float* sq_distances)
@@ -64,14 +66,17 @@ class KnnResult {
       indices_[i] = indices_[i - 1];
     }
     sq_distances_[i] = sq_distance;
-    indices_[i] = idx;
+    indices_[i] = kPositions ? static_cast<int>(position) : idx;
     if (full()) bound_ = widened(sq_distances_[capacity_ - 1]);
     return true;
   }
 
  private:
+  int index_in(std::size_t slot) const {
+    return kPositions ? static_cast<int>(original_[static_cast<std::size_t>(indices_[slot])]) : indices_[slot];
+  }
   bool precedes(float sq_distance, int index, std::size_t slot) const {
-    return sq_distance < sq_distances_[slot] || (sq_distance == sq_distances_[slot] && index < indices_[slot]);
+    return sq_distance < sq_distances_[slot] || (sq_distance == sq_distances_[slot] && index < index_in(slot));
   }
 
   std::size_t capacity_;
@@ -187,16 +192,27 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 std::size_t KdTree::size() const { return impl_ ? impl_->kdtree_get_point_count() : 0; }
 
-void KdTree::knn(const Eigen::Vector3f& query, int k, std::vector<int>& indices,
-                 std::vector<float>& sq_distances) const {
+template <bool kPositions>
+void KdTree::knn_as(const Eigen::Vector3f& query, int k, std::vector<int>& indices,
+                    std::vector<float>& sq_distances) const {
   if (k <= 0) throw Error("nearest-neighbour search: k = " + std::to_string(k) + ", must be at least 1");
   check_query(query);
   const std::size_t count = std::min(static_cast<std::size_t>(k), size());
   indices.resize(count);
   sq_distances.resize(count);
   if (count == 0) return;
-  KnnResult result(count, impl_->original.data(), indices.data(), sq_distances.data());
+  KnnResult<kPositions> result(count, impl_->original.data(), indices.data(), sq_distances.data());
   impl_->index->findNeighbors(result, query.data(), nanoflann::SearchParams());
+}
+
+void KdTree::knn(const Eigen::Vector3f& query, int k, std::vector<int>& indices,
+                 std::vector<float>& sq_distances) const {
+  knn_as<false>(query, k, indices, sq_distances);
+}
+
+void KdTree::knn_positions(const Eigen::Vector3f& query, int k, std::vector<int>& positions,
+                           std::vector<float>& sq_distances) const {
+  knn_as<true>(query, k, positions, sq_distances);
 }
 
 void KdTree::radius(const Eigen::Vector3f& query, float radius, std::vector<int>& indices,
@@ -222,16 +238,35 @@ void KdTree::radius(const Eigen::Vector3f& query, float radius, std::vector<int>
   }
 }
 
-int KdTree::nearest(const Eigen::Vector3f& query, float* sq_distance) const {
+template <bool kPositions>
+int KdTree::nearest_as(const Eigen::Vector3f& query, float* sq_distance) const {
   check_query(query);
   int index = -1;
   float best = std::numeric_limits<float>::infinity();
   if (size() > 0) {
-    KnnResult result(1, impl_->original.data(), &index, &best);
+    KnnResult<kPositions> result(1, impl_->original.data(), &index, &best);
     impl_->index->findNeighbors(result, query.data(), nanoflann::SearchParams());
   }
   if (sq_distance != nullptr) *sq_distance = best;
   return index;
+}
+
+int KdTree::nearest(const Eigen::Vector3f& query, float* sq_distance) const {
+  return nearest_as<false>(query, sq_distance);
+}
+
+int KdTree::nearest_position(const Eigen::Vector3f& query, float* sq_distance) const {
+  return nearest_as<true>(query, sq_distance);
+}
+
+const std::vector<std::uint32_t>& KdTree::leaf_order() const {
+  static const std::vector<std::uint32_t> kNone;
+  return impl_ ? impl_->original : kNone;
+}
+
+Eigen::Vector3f KdTree::point_at_position(std::size_t position) const {
+  const float* p = impl_->xyz.data() + 3 * position;
+  return {p[0], p[1], p[2]};
 }
 
 }  // namespace conform

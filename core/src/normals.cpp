@@ -73,70 +73,6 @@ PcaNormal pca_normal(const std::vector<int>& neighbours, PointAt&& point_at, con
   return out;
 }
 
-// Spreads the low 21 bits of v so that bit b moves to bit 3b (the bit interleaving of a Morton code).
-std::uint64_t spread_bits(std::uint64_t v) {
-  v &= 0x1fffffu;
-  v = (v | v << 32) & 0x1f00000000ffffu;
-  v = (v | v << 16) & 0x1f0000ff0000ffu;
-  v = (v | v << 8) & 0x100f00f00f00f00fu;
-  v = (v | v << 4) & 0x10c30c30c30c30c3u;
-  v = (v | v << 2) & 0x1249249249249249u;
-  return v;
-}
-
-// The points' indices in Morton (Z-curve) order over their bounding box, so that consecutive queries are close in
-// space and find the tree's nodes and points still in cache: on a randomly ordered 1M-point tube this took
-// estimate_normals from 5.0 s to 2.2 s (one thread), the sort included.
-template <typename QueryAt>
-std::vector<std::size_t> z_order(std::size_t n, QueryAt&& query_at) {
-  Eigen::AlignedBox3d box;
-  for (std::size_t i = 0; i < n; ++i) box.extend(query_at(i).template cast<double>());
-  constexpr double kCells = 2097151.0;  // 2^21 - 1 per axis: three axes fill 63 bits
-  // In double, so that the scale of a thin box stays finite; a flat axis (all points equal in it) gets scale 0.
-  const Eigen::Array3d size = box.sizes().array();
-  const Eigen::Array3d scale = (size > 0.0).select(kCells / size, 0.0);
-  std::vector<std::pair<std::uint64_t, std::size_t>> keyed(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Array3d cell =
-        ((query_at(i).template cast<double>() - box.min()).array() * scale).min(kCells).max(0.0);
-    keyed[i] = {spread_bits(static_cast<std::uint64_t>(cell.x())) |
-                    spread_bits(static_cast<std::uint64_t>(cell.y())) << 1 |
-                    spread_bits(static_cast<std::uint64_t>(cell.z())) << 2,
-                i};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
-  return order;
-}
-
-// Calls fn(i, neighbours of i) for every point i in [0, n), in parallel and in z_order. Each point's result depends
-// only on its own neighbourhood, so the output is the same for any number of threads and any order. An exception
-// inside the loop is carried out of the parallel region and rethrown.
-template <typename QueryAt, typename Fn>
-void for_each_neighbourhood(std::size_t n, int k, const KdTree& tree, QueryAt&& query_at, Fn&& fn) {
-  const std::vector<std::size_t> order = z_order(n, query_at);
-  std::exception_ptr failure;
-  const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel
-  {
-    std::vector<int> indices;
-    std::vector<float> sq_distances;
-#pragma omp for schedule(dynamic, 256)
-    for (std::ptrdiff_t i = 0; i < count; ++i) {
-      try {
-        const std::size_t index = order[static_cast<std::size_t>(i)];
-        tree.knn(query_at(index), k, indices, sq_distances);
-        fn(index, indices);
-      } catch (...) {
-#pragma omp critical(conform_normals_failure)
-        if (!failure) failure = std::current_exception();
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
-}
-
 // The tree over the points; its complaint (non-finite points) is re-raised naming estimate_normals.
 template <typename Points>
 KdTree tree_over(const Points& points) {
@@ -145,6 +81,40 @@ KdTree tree_over(const Points& points) {
   } catch (const Error& e) {
     throw Error(std::string("estimate_normals: ") + e.what());
   }
+}
+
+// Calls fn(position, neighbours) for every point of the tree, in parallel and in the tree's leaf order: near points
+// one after the other, so that each query finds the last one's tree nodes and points still in cache (on a randomly
+// ordered 1M-point tube a Z-curve order of the queries took the normals from 5.0 s to 2.2 s, one thread; the leaf
+// order is coherent the same way and needs no sort: docs/align.md, "Speed"). Neighbours are named by position
+// (kPositions: read from the tree's own storage, contiguous) or by the caller's index, in the same order either way.
+// Each point's result depends only on its own neighbourhood, so the output is the same for any number of threads. An
+// exception inside the loop is carried out of the parallel region and rethrown.
+template <bool kPositions, typename Fn>
+void for_each_neighbourhood(int k, const KdTree& tree, Fn&& fn) {
+  std::exception_ptr failure;
+  const auto count = static_cast<std::ptrdiff_t>(tree.size());
+#pragma omp parallel
+  {
+    std::vector<int> neighbours;
+    std::vector<float> sq_distances;
+#pragma omp for schedule(dynamic, 256)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      try {
+        const auto position = static_cast<std::size_t>(i);
+        if constexpr (kPositions) {
+          tree.knn_positions(tree.point_at_position(position), k, neighbours, sq_distances);
+        } else {
+          tree.knn(tree.point_at_position(position), k, neighbours, sq_distances);
+        }
+        fn(position, neighbours);
+      } catch (...) {
+#pragma omp critical(conform_normals_failure)
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace
@@ -177,7 +147,16 @@ pcl::PointCloud<pcl::Normal> estimate_normals(const Cloud& cloud, const NormalOp
     throw Error("estimate_normals: the cloud has " + std::to_string(cloud.size()) +
                 " points; at least 3 are needed to fit a plane");
   }
-  const KdTree tree = tree_over(cloud.points);
+  return estimate_normals(tree_over(cloud.points), options);
+}
+
+pcl::PointCloud<pcl::Normal> estimate_normals(const KdTree& tree, const NormalOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("estimate_normals: invalid options: " + why);
+  if (tree.size() < 3) {
+    throw Error("estimate_normals: the cloud has " + std::to_string(tree.size()) +
+                " points; at least 3 are needed to fit a plane");
+  }
   const Eigen::Vector3d axis = options.axis_direction.stableNormalized();
   // Direction the normal must not point against (NormalOrientation's comments).
   const auto reference_at = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
@@ -186,19 +165,19 @@ pcl::PointCloud<pcl::Normal> estimate_normals(const Cloud& cloud, const NormalOp
     const Eigen::Vector3d radial = from_axis_point - from_axis_point.dot(axis) * axis;
     return options.orientation == NormalOrientation::kAwayFromAxis ? radial : Eigen::Vector3d(-radial);
   };
-  const auto point_at = [&](int j) -> Eigen::Vector3d {
-    return cloud.points[static_cast<std::size_t>(j)].getVector3fMap().cast<double>();
+  const auto point_at = [&](int position) -> Eigen::Vector3d {
+    return tree.point_at_position(static_cast<std::size_t>(position)).cast<double>();
   };
 
   pcl::PointCloud<pcl::Normal> normals;
-  normals.resize(cloud.size());
-  for_each_neighbourhood(
-      cloud.size(), options.k, tree, [&](std::size_t i) { return cloud.points[i].getVector3fMap(); },
-      [&](std::size_t i, const std::vector<int>& neighbours) {
-        const PcaNormal pca = pca_normal(neighbours, point_at, reference_at(point_at(static_cast<int>(i))));
-        const Eigen::Vector3f n = pca.normal.cast<float>();
-        normals[i] = pcl::Normal(n.x(), n.y(), n.z(), static_cast<float>(pca.curvature));
-      });
+  normals.resize(tree.size());
+  const std::vector<std::uint32_t>& index_at = tree.leaf_order();
+  for_each_neighbourhood<true>(options.k, tree, [&](std::size_t position, const std::vector<int>& neighbours) {
+    const Eigen::Vector3d p = tree.point_at_position(position).cast<double>();
+    const PcaNormal pca = pca_normal(neighbours, point_at, reference_at(p));
+    const Eigen::Vector3f n = pca.normal.cast<float>();
+    normals[index_at[position]] = pcl::Normal(n.x(), n.y(), n.z(), static_cast<float>(pca.curvature));
+  });
   return normals;
 }
 
@@ -222,16 +201,16 @@ std::vector<Eigen::Vector3d> estimate_normals(const Mesh& mesh, int k) {
   const auto point_at = [&](int j) -> const Eigen::Vector3d& { return mesh.vertices[static_cast<std::size_t>(j)]; };
 
   std::vector<Eigen::Vector3d> normals(mesh.vertices.size());
-  for_each_neighbourhood(
-      mesh.vertices.size(), k, tree, [&](std::size_t i) -> Eigen::Vector3f { return mesh.vertices[i].cast<float>(); },
-      [&](std::size_t i, const std::vector<int>& neighbours) {
-        // A vertex without faces (or whose faces cancel) borrows the face normals of its neighbours.
-        Eigen::Vector3d reference = face_normals[i];
-        if (reference.isZero(0.0)) {
-          for (int j : neighbours) reference += face_normals[static_cast<std::size_t>(j)];
-        }
-        normals[i] = pca_normal(neighbours, point_at, reference).normal;
-      });
+  const std::vector<std::uint32_t>& index_at = tree.leaf_order();
+  for_each_neighbourhood<false>(k, tree, [&](std::size_t position, const std::vector<int>& neighbours) {
+    const std::size_t i = index_at[position];
+    // A vertex without faces (or whose faces cancel) borrows the face normals of its neighbours.
+    Eigen::Vector3d reference = face_normals[i];
+    if (reference.isZero(0.0)) {
+      for (int j : neighbours) reference += face_normals[static_cast<std::size_t>(j)];
+    }
+    normals[i] = pca_normal(neighbours, point_at, reference).normal;
+  });
   return normals;
 }
 

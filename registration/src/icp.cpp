@@ -192,8 +192,9 @@ IcpResult icp(const std::vector<Eigen::Vector3d>& scan, const IcpReference& refe
   // Away from the optimum the residuals are the pose's error, not noise: holding by them would hold everything at
   // a wrong start. So the first pass holds only what the noise floor cannot fix (a plane's in-plane motions); when
   // the residuals' noise at its end leaves more directions too loose, a second pass from the start holds them.
-  ScanData data{scan, {}};
-  if (options.method == IcpMethod::kPlaneToPlane) data.normals = detail::plane_normals(scan, kScanNormalNeighbours);
+  const std::vector<Eigen::Vector3d> ordered = detail::spatially_ordered(scan);  // for the caches (pairs.h)
+  ScanData data{ordered, {}};
+  if (options.method == IcpMethod::kPlaneToPlane) data.normals = detail::plane_normals(ordered, kScanNormalNeighbours);
   Pass first{options.min_kernel_scale_mm, 0};
   IcpResult result = run_pass(data, reference, T_ref_scan_init, options, first);
   if (result.converged && options.freeze_degenerate && result.degeneracy.degenerate_basis.size() > first.held) {

@@ -1,6 +1,7 @@
 #include "conform/registration/icp_reference.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -15,14 +16,14 @@ namespace {
 
 constexpr int kNormalNeighbours = 16;
 
-// PCA normals of a cloud without faces, turned away from its centroid: the sign does not matter to point-to-plane
-// distances, but a consistent one keeps features (FPFH) comparable between scan and reference.
-std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh) {
-  Cloud cloud = to_cloud(mesh);
+// PCA normals of a cloud without faces, over the tree already built on it, turned away from its centroid: the sign
+// does not matter to point-to-plane distances, but a consistent one keeps features (FPFH) comparable between scan
+// and reference.
+std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const KdTree& tree) {
   NormalOptions options;
   options.k = kNormalNeighbours;
   options.viewpoint = centroid(mesh);
-  const pcl::PointCloud<pcl::Normal> normals = estimate_normals(cloud, options);
+  const pcl::PointCloud<pcl::Normal> normals = estimate_normals(tree, options);
   std::vector<Eigen::Vector3d> out(normals.size());
   for (std::size_t i = 0; i < normals.size(); ++i) out[i] = -normals[i].getNormalVector3fMap().cast<double>();
   return out;
@@ -45,6 +46,8 @@ void IcpReference::build(Mesh mesh) {
     throw Error("ICP reference: " + std::to_string(mesh.vertices.size()) + " points; at least 3 are needed");
   }
   if (count_non_finite(mesh) > 0) throw Error("ICP reference: has NaN or infinite points; clean it first");
+  // The tree first: a cloud's normals are estimated over it.
+  tree_ = std::make_unique<KdTree>(mesh.vertices);
   if (mesh.has_normals()) {
     normals_ = std::move(mesh.normals);
     for (Eigen::Vector3d& n : normals_) {
@@ -56,10 +59,14 @@ void IcpReference::build(Mesh mesh) {
     // neighbours) into 16 neighbours. Isolated vertices get a zero normal and so add nothing to a plane step.
     normals_ = vertex_normals_from_faces(mesh);
   } else {
-    normals_ = cloud_normals(mesh);
+    normals_ = cloud_normals(mesh, *tree_);
   }
   if (mesh.has_faces()) smooth_ = smooth_vertices(mesh, normals_);
-  tree_ = std::make_unique<KdTree>(mesh.vertices);
+  const std::vector<std::uint32_t>& index_at = tree_->leaf_order();
+  by_position_.resize(index_at.size());
+  for (std::size_t p = 0; p < index_at.size(); ++p) {
+    by_position_[p] = {mesh.vertices[index_at[p]], normals_[index_at[p]]};
+  }
   points_ = std::move(mesh.vertices);
   faces_ = std::move(mesh.faces);
 }

@@ -11,22 +11,23 @@ void PairCache::reset(std::size_t points, bool surface) {
   reach_.assign(points, kNoAnchor);
   distance_.assign(surface ? points : 0, std::numeric_limits<double>::infinity());
   crowded_.assign(surface ? points : 0, std::numeric_limits<double>::infinity());
-  index_.assign(surface ? 0 : points, -1);
+  sample_.assign(surface ? 0 : points, IcpReference::Sample{});
   slots_.assign(surface ? points * kMaxSlots : 0, 0);
   slot_count_.assign(surface ? points : 0, 0);
 }
 
-int PairCache::nearest(const KdTree& tree, std::size_t i, const Eigen::Vector3f& query) {
+const IcpReference::Sample* PairCache::nearest(const IcpReference& reference, std::size_t i,
+                                               const Eigen::Vector3f& query) {
   const Eigen::Vector3d q = query.cast<double>();
-  if (reach_[i] >= 0.0 && (q - anchor_[i]).norm() < reach_[i]) return index_[i];
-  thread_local std::vector<int> indices;
+  if (reach_[i] >= 0.0 && (q - anchor_[i]).norm() < reach_[i]) return &sample_[i];
+  thread_local std::vector<int> positions;
   thread_local std::vector<float> sq_distances;
-  tree.knn(query, 2, indices, sq_distances);
-  if (indices.empty()) return -1;
+  reference.tree().knn_positions(query, 2, positions, sq_distances);
+  if (positions.empty()) return nullptr;
   anchor_[i] = q;
-  index_[i] = indices[0];
+  sample_[i] = reference.by_position()[static_cast<std::size_t>(positions[0])];
   reach_[i] = kNoSlots;
-  if (indices.size() == 2) {
+  if (positions.size() == 2) {
     const double d1 = std::sqrt(static_cast<double>(sq_distances[0]));
     const double d2 = std::sqrt(static_cast<double>(sq_distances[1]));
     // The tree's distances are float (relative error ~1e-7), and so are its points (their ulp at the query's
@@ -35,7 +36,7 @@ int PairCache::nearest(const KdTree& tree, std::size_t i, const Eigen::Vector3f&
     const double reach = 0.5 * (d2 - d1) - 1e-4 * d2 - 16.0 * ulp;
     if (reach > 0.0) reach_[i] = reach;
   }
-  return indices[0];
+  return &sample_[i];
 }
 
 SurfacePoint PairCache::closest(const TriangleIndex& surface, std::size_t i, const Eigen::Vector3d& query,

@@ -17,6 +17,7 @@
 
 #include "conform/core/nearest_neighbors.h"
 #include "conform/core/triangle_index.h"
+#include "conform/registration/icp_reference.h"
 
 namespace conform::detail {
 
@@ -27,8 +28,10 @@ class PairCache {
   void reset(std::size_t points, bool surface);
   std::size_t size() const { return anchor_.size(); }
 
-  // KdTree::nearest(query) for scan point i (< size()). Calls for different i may run in parallel.
-  int nearest(const KdTree& tree, std::size_t i, const Eigen::Vector3f& query);
+  // The reference's point nearest to `query` (and its normal; KdTree::nearest_position) for scan point i (< size()),
+  // nullptr when the reference is empty. A reused answer is read from the cache's own copy, stored in scan order:
+  // late iterations read their pairs' reference data sequentially. Calls for different i may run in parallel.
+  const IcpReference::Sample* nearest(const IcpReference& reference, std::size_t i, const Eigen::Vector3f& query);
   // TriangleIndex::closest(query, max_distance) for scan point i. Calls for different i may run in parallel.
   SurfacePoint closest(const TriangleIndex& surface, std::size_t i, const Eigen::Vector3d& query,
                        double max_distance);
@@ -42,7 +45,7 @@ class PairCache {
   std::vector<double> reach_;            // how far it may move from there and keep its answer, mm; < 0: search
   std::vector<double> distance_;         // closest surface point: its distance then, mm
   std::vector<double> crowded_;          // the distance at which more than kMaxSlots triangles were in reach, mm
-  std::vector<int> index_;               // nearest point: its index then
+  std::vector<IcpReference::Sample> sample_;  // nearest point: the reference's point and normal found then
   std::vector<std::int32_t> slots_;      // closest surface point: kMaxSlots per point
   std::vector<std::uint8_t> slot_count_;
 };

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "conform/core/z_order.h"
+
 namespace conform::detail {
 
 namespace {
@@ -13,16 +15,22 @@ namespace {
 constexpr std::ptrdiff_t kSerialBelow = 16384;
 constexpr int kChunk = 512;
 
-// Nearest reference point: the tree searches in float, the distance is then taken in double.
+// Nearest reference point: the tree searches in float, the distance is then taken in double. The point and its
+// normal are read in the tree's order (IcpReference::by_position), near the last query's.
 void nearest_point(const IcpReference& reference, const Eigen::Vector3d& q, double max_distance_mm, Pair& pair,
                    PairCache* cache, std::size_t i) {
   const Eigen::Vector3f qf = q.cast<float>();
   if (!qf.allFinite()) return;  // beyond float range: nothing of the reference can be near
-  const int j = cache != nullptr ? cache->nearest(reference.tree(), i, qf) : reference.tree().nearest(qf);
-  if (j < 0) return;
-  const auto index = static_cast<std::size_t>(j);
-  pair.target = reference.points()[index];
-  pair.normal = reference.normals()[index];
+  const IcpReference::Sample* s = nullptr;
+  if (cache != nullptr) {
+    s = cache->nearest(reference, i, qf);
+  } else {
+    const int j = reference.tree().nearest_position(qf);
+    if (j >= 0) s = &reference.by_position()[static_cast<std::size_t>(j)];
+  }
+  if (s == nullptr) return;
+  pair.target = s->point;
+  pair.normal = s->normal;
   pair.distance = (q - pair.target).norm();
   pair.found = pair.distance <= max_distance_mm;
 }
@@ -45,6 +53,13 @@ void nearest_surface_point(const IcpReference& reference, const Eigen::Vector3d&
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector3d> spatially_ordered(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (std::size_t i : z_order(points)) out.push_back(points[i]);
+  return out;
+}
 
 void find_pairs(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eigen::Vector3d>& scan_normals,
                 const Eigen::Isometry3d& T_ref_scan, const IcpReference& reference, const PairRules& rules,

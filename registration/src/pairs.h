@@ -30,6 +30,11 @@ struct PairRules {
   double max_distance_mm = 0.0;
 };
 
+// The points in Z-curve order (z_order, core/geometry.h). ICP iterates on the scan in this order: consecutive points
+// are near each other, so each step's searches and the reference data they find stay in cache (with the leaf-ordered
+// reference data: docs/align.md, "Speed"). The result depends on the order only through rounding.
+std::vector<Eigen::Vector3d> spatially_ordered(const std::vector<Eigen::Vector3d>& points);
+
 // Pairs for every scan point at T_ref_scan (found = false beyond the distance). Parallel, order-independent.
 // scan_normals: the scan's unit normals (scan frame), one per point, for plane-to-plane; empty otherwise.
 // `cache` (reset for this scan and method): each point's search is reused from the last call while that is exact

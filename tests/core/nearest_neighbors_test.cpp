@@ -127,6 +127,46 @@ TEST(KdTree, TiesAndDuplicatesResolveToTheLowerIndex) {
   }
 }
 
+// The searches by storage position find the brute-force neighbours (ties included), named by position: leaf_order()
+// is a permutation that maps them back, and point_at_position() holds the point stored there.
+TEST(KdTree, PositionSearchesFindTheSameNeighbours) {
+  std::mt19937 rng(13);
+  for (std::size_t n : {1u, 50u, 3000u}) {
+    Cloud3 cloud = random_cloud(n, rng);
+    for (std::size_t i = 0; i + 1 < n; i += 7) cloud.push_back(cloud[i]);  // duplicates: ties to the lower index
+    const KdTree tree(cloud);
+    const std::vector<std::uint32_t>& index_at = tree.leaf_order();
+    ASSERT_EQ(index_at.size(), cloud.size());
+    std::vector<bool> seen(cloud.size(), false);
+    for (std::size_t p = 0; p < index_at.size(); ++p) {
+      ASSERT_LT(index_at[p], cloud.size());
+      ASSERT_FALSE(seen[index_at[p]]) << "position " << p;
+      seen[index_at[p]] = true;
+      ASSERT_EQ(tree.point_at_position(p), cloud[index_at[p]].getVector3fMap()) << "position " << p;
+    }
+    std::vector<int> positions;
+    std::vector<float> d2;
+    for (const Eigen::Vector3f& q : queries_for(cloud, rng)) {
+      const Ranking all = brute_force(cloud, q);
+      for (int k : {1, 2, 16}) {
+        tree.knn_positions(q, k, positions, d2);
+        ASSERT_EQ(positions.size(), std::min<std::size_t>(static_cast<std::size_t>(k), all.size()));
+        for (std::size_t r = 0; r < positions.size(); ++r) {
+          ASSERT_EQ(static_cast<int>(index_at[static_cast<std::size_t>(positions[r])]), all[r].second) << "k " << k;
+          ASSERT_EQ(d2[r], all[r].first);
+        }
+      }
+      float sq = 0.0f;
+      const int p = tree.nearest_position(q, &sq);
+      ASSERT_EQ(static_cast<int>(index_at[static_cast<std::size_t>(p)]), all[0].second);
+      ASSERT_EQ(sq, all[0].first);
+    }
+  }
+  const KdTree empty{Cloud3()};
+  EXPECT_TRUE(empty.leaf_order().empty());
+  EXPECT_EQ(empty.nearest_position(Eigen::Vector3f::Zero()), -1);
+}
+
 TEST(KdTree, KLargerThanTheCloudGivesAllPoints) {
   std::mt19937 rng(11);
   const Cloud3 cloud = random_cloud(25, rng);

@@ -15,6 +15,7 @@
 
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
 
 namespace conform {
 namespace {
@@ -140,6 +141,26 @@ TEST(EstimateNormals, SphereNormalsAreRadialAndPointToTheViewpoint) {
     const Eigen::Vector3d p = cloud.points[i].getVector3fMap().cast<double>();
     EXPECT_GE(normal_at(up, i).dot(options.viewpoint - p), 0.0) << "point " << i;
   }
+}
+
+// Normals over a tree already built (IcpReference's way, from double points): the plane's analytic normal exactly
+// (as PlaneFarFromOriginIsExact), and bit for bit those of the same points given as a cloud.
+TEST(EstimateNormals, OverABuiltTreeAreTheCloudsOwn) {
+  std::mt19937 rng(21);
+  const Cloud cloud = plane_cloud(3000, 40.0, 30.0, rng);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : cloud.points) points.push_back(p.getVector3fMap().cast<double>());
+  NormalOptions options;
+  options.viewpoint = Eigen::Vector3d(1e5, 1e5, 1e5);
+  const KdTree tree(points);
+  const auto from_tree = estimate_normals(tree, options);
+  const auto from_cloud = estimate_normals(cloud, options);
+  ASSERT_EQ(from_tree.size(), cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    EXPECT_LT(angle(normal_at(from_tree, i), kPlaneNormal), 1e-6) << i;
+    ASSERT_EQ(std::memcmp(&from_tree[i], &from_cloud[i], sizeof(pcl::Normal)), 0) << i;
+  }
+  EXPECT_THROW(estimate_normals(KdTree(std::vector<Eigen::Vector3d>(2, Eigen::Vector3d::Zero())), options), Error);
 }
 
 // Cylinder of radius 30 mm, length 120 mm around an axis through (10, -5, 0) along z, 20000 random points (mean

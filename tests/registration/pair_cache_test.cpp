@@ -37,13 +37,18 @@ TEST(PairCache, NearestPointsAreTheTreesThroughConvergingPoses) {
   options.edge_mm = 5.5;
   options.noise_mm = 0.02;
   const Mesh scan = box_part(options);
-  const KdTree tree(reference.vertices);
+  const IcpReference icp_reference(reference);
+  const KdTree& tree = icp_reference.tree();
   detail::PairCache cache;
   cache.reset(scan.vertices.size(), false);
   for (const Eigen::Isometry3d& T : converging_poses(16, 0.5)) {
     for (std::size_t i = 0; i < scan.vertices.size(); ++i) {
       const Eigen::Vector3f q = (T * scan.vertices[i]).cast<float>();
-      ASSERT_EQ(cache.nearest(tree, i, q), tree.nearest(q)) << i;
+      const IcpReference::Sample* s = cache.nearest(icp_reference, i, q);
+      ASSERT_NE(s, nullptr);
+      const auto j = static_cast<std::size_t>(tree.nearest(q));
+      ASSERT_EQ(s->point, icp_reference.points()[j]) << i;
+      ASSERT_EQ(s->normal, icp_reference.normals()[j]) << i;
     }
   }
 }

@@ -8,6 +8,7 @@
 // negative or NaN radius. An empty tree is allowed: its queries find nothing.
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -37,7 +38,23 @@ class KdTree {
   // (infinity when the tree is empty).
   int nearest(const Eigen::Vector3f& query, float* sq_distance = nullptr) const;
 
+  // The tree stores its points in the order of its leaves, so that points near in space are near in memory. A
+  // position is an index into that order: leaf_order()[position] is the caller's index of the point stored there.
+  // The searches by position find the same neighbours in the same order as those above (ties to the lower index
+  // of the caller's), named by position: a caller that keeps its own per-point data in leaf order reads what
+  // consecutive nearby queries find from nearby memory.
+  const std::vector<std::uint32_t>& leaf_order() const;
+  Eigen::Vector3f point_at_position(std::size_t position) const;  // position < size()
+  void knn_positions(const Eigen::Vector3f& query, int k, std::vector<int>& positions,
+                     std::vector<float>& sq_distances) const;
+  int nearest_position(const Eigen::Vector3f& query, float* sq_distance = nullptr) const;
+
  private:
+  template <bool kPositions>
+  void knn_as(const Eigen::Vector3f& query, int k, std::vector<int>& indices, std::vector<float>& sq_distances) const;
+  template <bool kPositions>
+  int nearest_as(const Eigen::Vector3f& query, float* sq_distance) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

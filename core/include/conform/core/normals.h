@@ -14,6 +14,7 @@
 
 #include "conform/core/cloud.h"
 #include "conform/core/mesh.h"
+#include "conform/core/nearest_neighbors.h"
 
 namespace conform {
 
@@ -36,6 +37,11 @@ struct NormalOptions {
 // Unit normals of every point; curvature holds the surface variation l0 / (l0 + l1 + l2) (l0 the smallest eigenvalue).
 // Throws conform::Error when options are invalid, the cloud has fewer than 3 points or a non-finite point.
 pcl::PointCloud<pcl::Normal> estimate_normals(const Cloud& cloud, const NormalOptions& options);
+
+// The same for the points of a tree already built over them (KdTree keeps its own float copy): normals[i] is that of
+// the tree's point i, equal bit for bit to estimate_normals of those points as a cloud, without a second tree. The
+// queries run in the tree's leaf order, so that each finds the last one's neighbours still in cache.
+pcl::PointCloud<pcl::Normal> estimate_normals(const KdTree& tree, const NormalOptions& options);
 
 // PCA normals of a mesh's vertices over their k nearest vertices, each oriented to agree with the
 // area-weighted normal of the faces around that vertex (vertex_normals_from_faces); a vertex without faces uses the

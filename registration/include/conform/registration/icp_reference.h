@@ -1,7 +1,8 @@
 #pragma once
 // The fixed side of a registration, prepared once and shared by every start and every ICP run against it: the
-// reference points in double, one unit normal per point, a kd-tree over the points and, for a mesh, an index over
-// its triangles (point-to-surface), built on first use. Thread-safe to query.
+// reference points in double, one unit normal per point, a kd-tree over the points (and both again in the tree's
+// leaf order, for fast pairing) and, for a mesh, an index over its triangles (point-to-surface), built on first use.
+// Thread-safe to query.
 
 #include <memory>
 #include <mutex>
@@ -31,6 +32,13 @@ class IcpReference {
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   const std::vector<Eigen::Vector3d>& normals() const { return normals_; }
   const KdTree& tree() const { return *tree_; }
+  // A point and its normal, stored in the tree's leaf order: by_position()[p] is point tree().leaf_order()[p], so
+  // that what KdTree::nearest_position finds for nearby queries is read from nearby memory.
+  struct Sample {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  };
+  const std::vector<Sample>& by_position() const { return by_position_; }
   bool has_surface() const { return !faces_.empty(); }
   const std::vector<Face>& faces() const { return faces_; }
   // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal and of each other (a
@@ -50,6 +58,7 @@ class IcpReference {
   std::vector<Eigen::Vector3d> normals_;
   std::vector<Face> faces_;
   std::vector<unsigned char> smooth_;
+  std::vector<Sample> by_position_;
   std::unique_ptr<KdTree> tree_;
   mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
   mutable std::unique_ptr<TriangleIndex> surface_;
