@@ -27,7 +27,7 @@ class Noise {
     state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
     return (static_cast<double>(state_ >> 11) + 0.5) / 9007199254740992.0;
   }
-  double normal() { return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * test::kPi * uniform()); }
+  double normal() { return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * kPi * uniform()); }
 
  private:
   std::uint64_t state_;
@@ -62,7 +62,7 @@ Cloud noisy_sphere(double sigma, std::uint64_t seed) {
   std::vector<Eigen::Vector3d> points;
   for (int i = 0; i < 5000; ++i) {
     const double z = 2.0 * noise.uniform() - 1.0;
-    const double phi = 2.0 * test::kPi * noise.uniform();
+    const double phi = 2.0 * kPi * noise.uniform();
     const double s = std::sqrt(1.0 - z * z);
     const Eigen::Vector3d d(s * std::cos(phi), s * std::sin(phi), z);
     points.push_back(Eigen::Vector3d(-30.0, 10.0, 200.0) + (100.0 + sigma * noise.normal()) * d);

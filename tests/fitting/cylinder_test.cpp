@@ -39,7 +39,7 @@ TEST(CylinderFit, FullTubeSigma02) {
   print_figures("full tube, sigma 0.2", f);
   expect_tight(f);
   EXPECT_NEAR(f.fit.noise_sigma_mm, 0.2, 0.01);
-  EXPECT_NEAR(f.fit.arc_rad, 2.0 * test::kPi, 1.0 * kDeg);
+  EXPECT_NEAR(f.fit.arc_rad, 2.0 * kPi, 1.0 * kDeg);
   EXPECT_EQ(f.fit.side, CylinderSide::kOuter);
   EXPECT_GT(f.fit.inlier_fraction, 0.99);
 }

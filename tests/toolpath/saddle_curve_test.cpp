@@ -17,8 +17,6 @@
 namespace conform {
 namespace {
 
-using test::kPi;
-
 SaddleGeometry geometry(double R, double r, double pitch_deg, double offset) {
   return test::saddle_geometry(R, r, pitch_deg, offset);
 }
