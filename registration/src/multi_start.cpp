@@ -187,9 +187,11 @@ std::vector<DegenerateDirection> symmetric_motions(const std::vector<Eigen::Vect
     u.tail<3>() = d.translation;
     const double reach_per_unit = u.head<3>().norm() + u.tail<3>().norm();  // displacement at the RMS radius
     if (!(reach_per_unit > 0.0)) continue;
+    // Both ways, and at four times the step: a weak but real constraint (a handful of points on a wall) may hide
+    // within chance at one step; a symmetry keeps the fit at any step.
     bool keeps = true;
-    for (double sign : {-1.0, 1.0}) {
-      const Eigen::Isometry3d moved = screw_motion(sign * step_mm / reach_per_unit * u, degeneracy.centre, L);
+    for (double step : {-step_mm, step_mm, -4.0 * step_mm, 4.0 * step_mm}) {
+      const Eigen::Isometry3d moved = screw_motion(step / reach_per_unit * u, degeneracy.centre, L);
       const std::vector<char> m = inliers(subset, moved * T_best, reference, o.inlier_distance_mm, reach);
       std::size_t best_only = 0, moved_only = 0;
       for (std::size_t i = 0; i < subset.size(); ++i) {
