@@ -11,8 +11,8 @@
 #include "conform/pipelines/compare.h"
 #include "conform/pipelines/compare_json.h"
 #include "conform/pipelines/compare_report.h"
-#include "conform/report/deviation_colours.h"
-#include "conform/report/deviation_histogram.h"
+#include "conform/pipelines/deviation_colours.h"
+#include "conform/pipelines/deviation_histogram.h"
 #include "report_option.h"
 #include "terminal.h"
 

@@ -6,7 +6,7 @@
 
 #include "conform/evaluation/deviation.h"
 #include "conform/evaluation/statistics.h"
-#include "conform/report/deviation_view.h"
+#include "conform/pipelines/deviation_view.h"
 #include "conform/report/scene.h"
 
 namespace conform {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "conform/report/deviation_view.h"
+#include "conform/pipelines/deviation_view.h"
 
 namespace conform {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "conform/core/constants.h"
 #include "conform/evaluation/statistics.h"
-#include "conform/report/deviation_view.h"
+#include "conform/pipelines/deviation_view.h"
 #include "conform/report/scene.h"
 
 namespace conform {

@@ -15,8 +15,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "conform/report/deviation_colours.h"
-#include "conform/report/deviation_histogram.h"
+#include "conform/pipelines/deviation_colours.h"
+#include "conform/pipelines/deviation_histogram.h"
 #include "bindings.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"

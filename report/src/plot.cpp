@@ -6,6 +6,15 @@
 
 namespace conform::html {
 
+double nice_step(double span, int count) {
+  const double raw = span / count;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0}) {
+    if (m * power >= raw) return m * power;
+  }
+  return 10.0 * power;
+}
+
 Plot histogram_plot(const std::vector<double>& values, std::size_t bins, double lo, double hi, std::string title,
                     std::string x_label, const std::function<Rgb(double)>& colour) {
   if (bins == 0 || !(lo < hi)) throw std::invalid_argument("histogram_plot: needs bins >= 1 and lo < hi");

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <limits>
 
-#include "histogram_axis.h"
 #include "report_detail.h"
 
 namespace conform::html::detail {
@@ -68,7 +67,7 @@ Frame frame_of(const Plot& plot) {
 
 void axes(std::string& out, const Frame& f, const Plot& plot) {
   const double bottom = kHeight - kBottom, right = kWidth - kRight;
-  const double xs = conform::detail::nice_step(f.x.hi - f.x.lo, 8), ys = conform::detail::nice_step(f.y.hi - f.y.lo, 5);
+  const double xs = nice_step(f.x.hi - f.x.lo, 8), ys = nice_step(f.y.hi - f.y.lo, 5);
   for (double v = std::ceil(f.x.lo / xs) * xs; v <= f.x.hi + 1e-9 * xs; v += xs) {
     const double shown = std::abs(v) < 0.5 * xs ? 0.0 : v;
     out += "<line class=\"grid\" x1=\"" + num(f.px(v)) + "\" y1=\"" + num(kTop) + "\" x2=\"" + num(f.px(v)) +

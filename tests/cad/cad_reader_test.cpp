@@ -21,6 +21,7 @@
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
 #include "conform/evaluation/deviation.h"
+#include "conform/evaluation/statistics.h"
 #include "temp_dir.h"
 
 namespace conform {
@@ -28,17 +29,11 @@ namespace {
 
 using test::CadFormat;
 
-struct Moments {
-  double mean = 0.0, std = 0.0;
-};
-
-Moments moments(const std::vector<double>& v) {
-  Moments m;
-  for (double x : v) m.mean += x;
-  m.mean /= static_cast<double>(v.size());
-  for (double x : v) m.std += (x - m.mean) * (x - m.mean);
-  m.std = std::sqrt(m.std / static_cast<double>(v.size()));
-  return m;
+// Mean and population std by evaluation's own statistics; every value must be a matched point's.
+DeviationStatistics moments(const std::vector<double>& v) {
+  const DeviationStatistics s = deviation_statistics(v);
+  EXPECT_EQ(s.excluded, 0u);
+  return s;
 }
 
 Mesh read(const std::string& path, CadReport* cad, double deflection_mm = 0.005) {
@@ -61,14 +56,14 @@ void expect_deviation_is_the_noise(const TopoDS_Shape& shape, const std::string&
   const test::SurfaceSample scan = test::sample_surface(shape, 6000, 0.02, 7);
   ASSERT_GT(scan.points.size(), 5500u);
   const Mesh reference = read(path, nullptr, deflection_mm);
-  const Moments noise = moments(scan.offset_mm);
+  const DeviationStatistics noise = moments(scan.offset_mm);
   for (const bool smooth : {true, false}) {
     DeviationOptions options;
     options.smooth_surface = smooth;
     const DeviationResult d = compute_deviation(scan.points, reference, options);
-    const Moments dev = moments(d.deviation_mm);
-    EXPECT_NEAR(dev.mean, noise.mean, smooth ? 0.001 : mean_flat_tolerance_mm) << path << " smooth " << smooth;
-    EXPECT_NEAR(dev.std, noise.std, 0.001) << path << " smooth " << smooth;
+    const DeviationStatistics dev = moments(d.deviation_mm);
+    EXPECT_NEAR(dev.mean_mm, noise.mean_mm, smooth ? 0.001 : mean_flat_tolerance_mm) << path << " smooth " << smooth;
+    EXPECT_NEAR(dev.std_mm, noise.std_mm, 0.001) << path << " smooth " << smooth;
     std::vector<double> error(d.deviation_mm.size());
     std::size_t wrong_sign = 0, too_far = 0;
     for (std::size_t i = 0; i < error.size(); ++i) {
@@ -85,8 +80,8 @@ void expect_deviation_is_the_noise(const TopoDS_Shape& shape, const std::string&
     EXPECT_EQ(too_far, 0u) << path;
     std::printf("%s %s: deflection %g mm, %zu triangles: deviation mean %.5f std %.5f, noise mean %.5f std %.5f mm, "
                 "p99 |error| %.5f mm\n",
-                path.c_str(), smooth ? "smooth" : "flat  ", deflection_mm, reference.faces.size(), dev.mean, dev.std,
-                noise.mean, noise.std, error[error.size() * 99 / 100]);
+                path.c_str(), smooth ? "smooth" : "flat  ", deflection_mm, reference.faces.size(), dev.mean_mm, dev.std_mm,
+                noise.mean_mm, noise.std_mm, error[error.size() * 99 / 100]);
   }
 }
 

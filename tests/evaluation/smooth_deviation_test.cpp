@@ -13,6 +13,7 @@
 #include "conform/datasets/parts.h"
 #include "conform/datasets/tube.h"
 #include "conform/evaluation/deviation.h"
+#include "conform/evaluation/statistics.h"
 
 namespace conform {
 namespace {
@@ -24,17 +25,11 @@ struct Sample {
   std::vector<double> offset_mm;
 };
 
-struct Moments {
-  double mean = 0.0, std = 0.0;
-};
-
-Moments moments(const std::vector<double>& v) {
-  Moments m;
-  for (double x : v) m.mean += x;
-  m.mean /= static_cast<double>(v.size());
-  for (double x : v) m.std += (x - m.mean) * (x - m.mean);
-  m.std = std::sqrt(m.std / static_cast<double>(v.size()));
-  return m;
+// Mean and population std by evaluation's own statistics; every value must be a matched point's.
+DeviationStatistics moments(const std::vector<double>& v) {
+  const DeviationStatistics s = deviation_statistics(v);
+  EXPECT_EQ(s.excluded, 0u);
+  return s;
 }
 
 DeviationResult deviation(const Sample& s, const Mesh& reference, bool smooth) {
@@ -45,14 +40,14 @@ DeviationResult deviation(const Sample& s, const Mesh& reference, bool smooth) {
 
 // Mean and std of the deviations against the noise's, both ways; returns the flat facets' mean offset.
 double expect_noise(const Sample& s, const Mesh& reference, const char* what) {
-  const Moments noise = moments(s.offset_mm);
-  const Moments smooth = moments(deviation(s, reference, true).deviation_mm);
-  const Moments flat = moments(deviation(s, reference, false).deviation_mm);
+  const DeviationStatistics noise = moments(s.offset_mm);
+  const DeviationStatistics smooth = moments(deviation(s, reference, true).deviation_mm);
+  const DeviationStatistics flat = moments(deviation(s, reference, false).deviation_mm);
   std::printf("%-28s noise mean %.5f std %.5f | smooth mean %.5f std %.5f | flat mean %.5f std %.5f mm\n", what,
-              noise.mean, noise.std, smooth.mean, smooth.std, flat.mean, flat.std);
-  EXPECT_NEAR(smooth.mean, noise.mean, 0.001) << what;
-  EXPECT_NEAR(smooth.std, noise.std, 0.001) << what;
-  return flat.mean - noise.mean;
+              noise.mean_mm, noise.std_mm, smooth.mean_mm, smooth.std_mm, flat.mean_mm, flat.std_mm);
+  EXPECT_NEAR(smooth.mean_mm, noise.mean_mm, 0.001) << what;
+  EXPECT_NEAR(smooth.std_mm, noise.std_mm, 0.001) << what;
+  return flat.mean_mm - noise.mean_mm;
 }
 
 // A closed tube of radius R meshed at `edge_mm` (the generator's staggered rows), sampled on the exact cylinder away

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/fit_cylinder_report.h"
-#include "conform/report/deviation_colours.h"
-#include "conform/report/deviation_view.h"
+#include "conform/pipelines/deviation_colours.h"
+#include "conform/pipelines/deviation_view.h"
 
 namespace conform {
 namespace {

@@ -12,6 +12,9 @@
 
 namespace conform::html {
 
+// A tick step of 1, 2 or 5 times a power of ten giving about `count` intervals over `span` (> 0).
+double nice_step(double span, int count);
+
 struct Series {
   std::string name;  // the legend's label
   std::vector<double> x;

@@ -1,12 +1,12 @@
-#include "conform/report/deviation_view.h"
+#include "conform/pipelines/deviation_view.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "conform/report/deviation_colours.h"
-#include "histogram_axis.h"
+#include "conform/pipelines/deviation_colours.h"
+#include "deviation_axis.h"
 
 namespace conform::html {
 namespace {

@@ -1,4 +1,4 @@
-#include "conform/report/deviation_histogram.h"
+#include "conform/pipelines/deviation_histogram.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,21 +8,14 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "conform/report/deviation_colours.h"
+#include "conform/pipelines/deviation_colours.h"
 #include "conform/report/png_writer.h"
-#include "histogram_axis.h"
+#include "conform/report/plot.h"
+#include "deviation_axis.h"
 
 namespace conform {
 namespace detail {
 
-double nice_step(double span, int count) {
-  const double raw = span / count;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * power >= raw) return m * power;
-  }
-  return 10.0 * power;
-}
 
 std::pair<double, double> deviation_axis(const std::vector<double>& sorted, const DeviationStatistics& s) {
   double lo = std::min(percentile_of_sorted(sorted, 0.5), 0.0);
@@ -81,7 +74,7 @@ void draw_band(cv::Mat& img, const Axis& axis, double t) {
 }
 
 void draw_axes(cv::Mat& img, const Axis& axis, int max_count) {
-  const double step = detail::nice_step(axis.hi - axis.lo, 8);
+  const double step = html::nice_step(axis.hi - axis.lo, 8);
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
   const int bottom = kPlot.y + kPlot.height;
   for (double v = std::ceil(axis.lo / step) * step; v <= axis.hi; v += step) {
@@ -89,7 +82,7 @@ void draw_axes(cv::Mat& img, const Axis& axis, int max_count) {
     cv::line(img, {axis.x(v), bottom}, {axis.x(v), bottom + 5}, kBlack, 1);
     text(img, format("%.*f", shown, decimals), {axis.x(v), bottom + 22}, 0.45, kBlack, 0.5);
   }
-  const double count_step = std::max(1.0, detail::nice_step(std::max(max_count, 1), 5));
+  const double count_step = std::max(1.0, html::nice_step(std::max(max_count, 1), 5));
   for (double c = 0; c <= max_count * 1.08; c += count_step) {
     const int y = bottom - static_cast<int>(std::lround(c / (max_count * 1.1) * kPlot.height));
     cv::line(img, {kPlot.x - 5, y}, {kPlot.x, y}, kBlack, 1);

@@ -1,4 +1,4 @@
-#include "conform/report/deviation_colours.h"
+#include "conform/pipelines/deviation_colours.h"
 
 #include <algorithm>
 #include <cmath>
