@@ -65,6 +65,25 @@ std::string keep_previous(const std::string& shown, const std::string& target) {
   throw Error(shown + ": cannot keep its previous version while writing (" + detail::errno_text() + ")");
 }
 
+// Refuses, before any work, an output that cannot be written: a directory, or a file in a directory that does not
+// exist or may not be written (the temporary and the rename need the directory).
+void check_writable(const OutputSet::FileId& output) {
+  if (output.normal == "-") return;
+  std::error_code error;
+  if (output.exists && fs::is_directory(output.normal, error)) {
+    throw Error(output.shown + ": is a directory; give a file name");
+  }
+  if (shareable(output)) return;
+  const fs::path parent = fs::path(output.normal).parent_path();
+  if (!fs::is_directory(parent, error)) {
+    throw Error(output.shown + ": cannot be written: the directory " + parent.string() + " does not exist");
+  }
+  if (::access(parent.c_str(), W_OK) != 0) {
+    throw Error(output.shown + ": cannot be written: the directory " + parent.string() + " is not writable (" +
+                detail::errno_text() + ")");
+  }
+}
+
 }  // namespace
 
 OutputSet::OutputSet() : outer_(current_set) { current_set = this; }
@@ -92,6 +111,7 @@ void OutputSet::add_input(const std::string& path) {
 void OutputSet::add_output(const std::string& path) {
   if (path.empty()) return;
   const FileId output = identify(path);
+  check_writable(output);
   check_output(output);
   outputs_.push_back(output);
 }

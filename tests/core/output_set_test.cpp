@@ -143,5 +143,24 @@ TEST(OutputSet, AStagedOutputThatIsAnInputIsRefused) {
   EXPECT_EQ(test::read_bytes(dir.file("in.csv")), "input");
 }
 
+TEST(OutputSet, AnOutputThatCannotBeWrittenIsRefusedBeforeAnyWork) {
+  test::TempDir dir;
+  OutputSet set;
+  const std::string missing = error_of([&] { set.add_output(dir.file("no/such/dir/report.html")); });
+  EXPECT_TRUE(contains(missing, "no/such/dir/report.html: cannot be written: the directory")) << missing;
+  EXPECT_TRUE(contains(missing, "does not exist")) << missing;
+  const std::string directory = error_of([&] { set.add_output(dir.path()); });
+  EXPECT_TRUE(contains(directory, "is a directory")) << directory;
+  ASSERT_EQ(::mkdir(dir.file("locked").c_str(), 0500), 0);
+  if (::geteuid() != 0) {  // root writes anywhere
+    const std::string locked = error_of([&] { set.add_output(dir.file("locked/out.csv")); });
+    EXPECT_TRUE(contains(locked, "is not writable")) << locked;
+  }
+  ::chmod(dir.file("locked").c_str(), 0700);
+  EXPECT_EQ(error_of([&] { set.add_output(dir.file("out.csv")); }), "");
+  EXPECT_EQ(error_of([&] { set.add_output("/dev/null"); }), "");
+  EXPECT_EQ(error_of([&] { set.add_output("-"); }), "");
+}
+
 }  // namespace
 }  // namespace conform
