@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "conform/report/html.h"
 #include "conform/report/page.h"
 
 namespace conform::app {
@@ -15,9 +16,8 @@ namespace conform::app {
 // Adds --report to `command`, bound to `path`. A path not ending in .html or .htm is refused when parsed (exit 2).
 void add_report_option(CLI::App& command, std::string& path);
 
-// The date a page shows: now, UTC; or, when the environment variable CONFORM_REPORT_DATE is set, its value (same
-// input, same bytes, for tests and reproducible builds).
-std::string report_date();
+// The date a page shows (report/html.h): now, UTC, or CONFORM_REPORT_DATE.
+using html::report_date;
 
 // Writes `page` to `path` (nothing when `path` is empty). Throws conform::Error naming the path when it cannot.
 void write_report(const std::string& path, const html::Page& page);

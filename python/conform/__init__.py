@@ -3,6 +3,9 @@
 Every job runs the pipeline the CLI runs (same options, same defaults, same messages, same numbers) and returns a
 `Result` whose fields are the keys of the CLI's `--json` output, plus per-point numpy arrays aligned with the input
 (NaN where unmatched). Bad input raises `conform.Error` with the CLI's message. See docs/python.md.
+
+The jobs with the CLI's `--report` (align, compare, fit_cylinder, saddle, weld_layers, profile, tube_joint, sicp) take
+`report="page.html"`: the same self-contained HTML page, byte for byte (docs/report.md).
 """
 
 import json as _json
@@ -59,7 +62,7 @@ def align(scan, reference, **options):
     scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options as the CLI's flags:
     method ("" automatic, point-to-point, point-to-plane, point-to-surface, plane-to-plane), init (none, pca, fpfh,
     pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, max_noise_ratio,
-    units, out_transform, out_aligned, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
+    units, out_transform, out_aligned, report, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
     """
     return _result("align", _conform.align(scan, reference, **options))
 
@@ -68,7 +71,7 @@ def compare(scan, reference, **options):
     """`conform compare`: signed deviation of each scan point from the reference surface (mm), statistics.
 
     scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options: transform (path or
-    (4, 4) T_ref_scan), tolerance, out_deviation, out_histogram, units, progress (callable(stage, fraction)).
+    (4, 4) T_ref_scan), tolerance, out_deviation, out_histogram, units, report, progress (callable(stage, fraction)).
     Arrays: deviation_mm (N,), closest_mm (N, 3), NaN where unmatched.
     """
     return _result("compare", _conform.compare(scan, reference, **options))
@@ -80,7 +83,9 @@ def pose_error(transform_a, transform_b, **options):
 
 
 def fit_cylinder(input, **options):
-    """`conform fit-cylinder`: axis, radius, inliers of a tube scan. Arrays: inlier (N,) bool."""
+    """`conform fit-cylinder`: axis, radius, inliers of a tube scan. Options as the CLI's flags: threshold,
+    min_radius, max_radius, axis, axis_tolerance_deg, normals_k, seed, points (auto, vertices, surface),
+    surface_samples, out, report, progress. Arrays: inlier (N,) bool."""
     return _result("fit_cylinder", _conform.fit_cylinder(input, **options))
 
 
@@ -107,7 +112,7 @@ def tube_joint(leg, stub, **options):
     leg_pose: path or (4, 4) T_S_L), leg_markers, stub_markers, marker_tolerance, backtrack_tolerance,
     max_facet_error, island_ratio, wall_thickness (mm, or [leg, stub]), step_deg or step_mm, smoothing,
     smoothing_rms, groove_deg ([toe, side, heel, side]), groove_table, groove_interpolation, weld_angle_deg,
-    cut_standoff, weld_standoff, k_normals, k_refine, out_path, out_cut, out_weld, progress.
+    cut_standoff, weld_standoff, k_normals, k_refine, out_path, out_cut, out_weld, report, progress.
     Arrays (the path's rows): phi_rad, points_mm, tangents, stub_normals, leg_normals, cut_directions,
     weld_directions (M, 3), groove_rad, psi_rad."""
     return _result("tube_joint", _conform.tube_joint(leg, stub, **options))
@@ -120,7 +125,7 @@ def sicp(contour, scan, trajectory, **options):
     the CLI's flags: surface, segment_length, overlap, curvature_radius, model, projection_fit, neighbourhood,
     stability, max_distance, coarse_max_distance, scan_voxel, no_joint, joint_weight, joint_damping, max_iterations,
     min_edge_points, edge_radius, max_edge_gap, outlier_ratio, max_offset, normal_smoothing, normals, truth,
-    out_trajectory, out_rows, progress. Arrays: points_mm, normals (M, 3): the compensated trajectory, empty when it
+    out_trajectory, out_rows, report, progress. Arrays: points_mm, normals (M, 3): the compensated trajectory, empty when it
     cannot be trusted (`trusted` False, the CLI's exit 1)."""
     return _result("sicp", _conform.sicp(contour, scan, trajectory, **options))
 

@@ -22,14 +22,19 @@
 #include "conform/core/io.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/align_json.h"
+#include "conform/pipelines/align_report.h"
 #include "conform/pipelines/compare_json.h"
+#include "conform/pipelines/compare_report.h"
 #include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
+#include "conform/pipelines/fit_cylinder_report.h"
 #include "conform/pipelines/generate_eroded_json.h"
 #include "conform/pipelines/generate_profile_json.h"
 #include "conform/pipelines/pose_error_json.h"
 #include "conform/pipelines/saddle_json.h"
+#include "conform/pipelines/saddle_report.h"
 #include "inputs.h"
+#include "job_report.h"
 
 namespace conform::python {
 namespace {
@@ -60,7 +65,8 @@ py::array faces_view(const py::object& self, std::vector<Face>& faces) {
 
 py::tuple job_compare(const py::object& scan, const py::object& reference, const py::object& transform,
                       std::optional<double> tolerance, const py::object& out_deviation, const py::object& out_histogram,
-                      const std::string& units, const py::object& progress_callback) {
+                      const std::string& units, const py::object& report, const py::object& progress_callback) {
+  const std::string report_path = report_path_of(report);
   Inputs inputs;
   CompareOptions options;
   options.scan_path = inputs.geometry(scan, "scan");
@@ -78,8 +84,10 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   };
   const Progress progress(progress_callback);
   options.progress = progress.function();
+  options.keep_geometry = !report_path.empty();
   CompareResult result = released(progress, [&] { return run_compare(options); });
   const nlohmann::json j = compare_json(options, result, units);
+  write_report(report_path, compare_report(options, result, j, ""));
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   arrays["deviation_mm"] = owned(std::move(result.deviation.deviation_mm));
@@ -95,7 +103,8 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
                     const std::string& init, double max_distance, double overlap, int max_iterations,
                     double free_tolerance_mm, double free_tolerance_deg, double max_noise_ratio,
                     const std::string& units, const py::object& out_transform, const py::object& out_aligned,
-                    const py::object& progress_callback) {
+                    const py::object& report, const py::object& progress_callback) {
+  const std::string report_path = report_path_of(report);
   Inputs inputs;
   AlignOptions options;
   options.scan_path = inputs.geometry(scan, "scan");
@@ -113,10 +122,13 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   options.out_aligned_path = path_of(out_aligned);
   const Progress progress(progress_callback);
   options.progress = progress.function();
+  options.keep_geometry = !report_path.empty();
   const AlignResult result = released(progress, [&] { return run_align(options); });
+  const nlohmann::json j = align_json(result);
+  write_report(report_path, align_report(options, result, j, ""));
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
-  return answer(align_json(result), arrays);
+  return answer(j, arrays);
 }
 
 py::tuple job_export(const py::object& path, const std::string& format, const py::object& out,
@@ -241,8 +253,13 @@ py::tuple job_pose_error(const py::object& a, const py::object& b, const std::st
 
 py::tuple job_fit_cylinder(const py::object& input, double threshold, double min_radius,
                            std::optional<double> max_radius, std::optional<std::vector<double>> axis,
-                           double axis_tolerance_deg, int normals_k, std::uint64_t seed, const py::object& out,
+                           double axis_tolerance_deg, int normals_k, std::uint64_t seed, const std::string& points,
+                           std::size_t surface_samples, const py::object& out, const py::object& report,
                            const py::object& progress_callback) {
+  const std::string report_path = report_path_of(report);
+  if (points != "auto" && points != "vertices" && points != "surface") {
+    throw Error("--points: " + points + " not in {auto, vertices, surface}");
+  }
   Inputs inputs;
   FitCylinderJobOptions options;
   options.input_path = inputs.geometry(input, "input");
@@ -257,11 +274,17 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
   options.fit.axis_prior_tolerance_rad = axis_tolerance_deg / 180.0 * 3.141592653589793;
   options.fit.normal_neighbors = normals_k;
   options.fit.seed = seed;
+  options.points = points == "vertices"  ? CylinderPoints::kVertices
+                   : points == "surface" ? CylinderPoints::kSurface
+                                         : CylinderPoints::kAuto;
+  options.surface_samples = surface_samples;
   options.out_path = path_of(out);
+  options.keep_geometry = !report_path.empty();
   const Progress progress(progress_callback);
   options.fit.progress = progress.function();
   FitCylinderJobResult result = released(progress, [&] { return run_fit_cylinder(options); });
   const nlohmann::json j = fit_cylinder_json(result);
+  write_report(report_path, fit_cylinder_report(options, result, j, ""));
   std::vector<std::uint8_t> inlier(result.points, 0);
   for (int i : result.fit.inliers) inlier[static_cast<std::size_t>(i)] = 1;
   py::dict arrays;
@@ -273,7 +296,8 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
 
 py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pitch_deg, double offset,
                      std::optional<double> step_deg, std::optional<double> speed, std::optional<double> period,
-                     const py::object& out) {
+                     const py::object& out, const py::object& report) {
+  const std::string report_path = report_path_of(report);
   SaddleRequest request;
   request.leg_radius_mm = R;
   request.pipe_radius_mm = r;
@@ -292,6 +316,7 @@ py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pit
     return run_saddle(options);
   }();
   const nlohmann::json j = saddle_json(request, result);
+  write_report(report_path, saddle_report(request, options, result));
   std::vector<double> theta, pose, step;
   std::vector<Eigen::Vector3d> position;
   for (const SaddlePoint& p : result.saddle.points) {
@@ -336,14 +361,15 @@ PYBIND11_MODULE(_conform, m) {
   m.def("read", &job_read, arg("path"), arg("units") = "mm");
   m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
         arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
-        arg("out_histogram") = py::none(), arg("units") = "mm", arg("progress") = py::none());
+        arg("out_histogram") = py::none(), arg("units") = "mm", arg("report") = py::none(),
+        arg("progress") = py::none());
   const AlignOptions align;
   m.def("align", &job_align, arg("scan"), arg("reference"), py::kw_only(), arg("method") = "", arg("init") = "none",
         arg("max_distance") = align.max_distance_mm, arg("overlap") = align.overlap,
         arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
         arg("free_tolerance_deg") = align.free_tolerance_deg, arg("max_noise_ratio") = align.max_noise_ratio,
         arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
-        arg("progress") = py::none());
+        arg("report") = py::none(), arg("progress") = py::none());
   const ProgramOptions program;
   m.def("export", &job_export, arg("path"), py::kw_only(), arg("format"), arg("out"), arg("frame") = py::none(),
         arg("speed_mm_s") = program.speed_mm_s, arg("approach_speed_mm_s") = program.approach_speed_mm_s,
@@ -375,11 +401,14 @@ PYBIND11_MODULE(_conform, m) {
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
         arg("min_radius") = cylinder.fit.min_radius_mm, arg("max_radius") = py::none(), arg("axis") = py::none(),
         arg("axis_tolerance_deg") = 10.0, arg("normals_k") = cylinder.fit.normal_neighbors,
-        arg("seed") = cylinder.fit.seed, arg("out") = py::none(), arg("progress") = py::none());
+        arg("seed") = cylinder.fit.seed, arg("points") = to_string(cylinder.points),
+        arg("surface_samples") = cylinder.surface_samples, arg("out") = py::none(), arg("report") = py::none(),
+        arg("progress") = py::none());
   const SaddleRequest saddle_defaults;
   m.def("saddle", &job_saddle, py::kw_only(), arg("R"), arg("r"), arg("right_angle_pose_deg"),
         arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,
-        arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none());
+        arg("step_deg") = py::none(), arg("speed") = py::none(), arg("period") = py::none(), arg("out") = py::none(),
+        arg("report") = py::none());
   bind_toolpath_jobs(m);
   bind_generator_jobs(m);
 }

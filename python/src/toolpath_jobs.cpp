@@ -15,9 +15,14 @@
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube_json.h"
 #include "conform/pipelines/profile_json.h"
+#include "conform/pipelines/profile_report.h"
 #include "conform/pipelines/sicp_json.h"
+#include "conform/pipelines/sicp_report.h"
 #include "conform/pipelines/tube_joint_json.h"
+#include "conform/pipelines/tube_joint_report.h"
 #include "conform/pipelines/weld_layers_json.h"
+#include "conform/pipelines/weld_layers_report.h"
+#include "job_report.h"
 
 namespace conform::python {
 namespace {
@@ -25,7 +30,8 @@ namespace {
 py::tuple job_weld_layers(const py::object& eroded, const py::object& reference, bool reference_from_border,
                           double bead_spacing, double layer_height, double chord_error, double torch_distance,
                           int layers, double depth_threshold, int outward, const std::string& bias, double min_coverage,
-                          double min_crater_coverage, const py::object& out) {
+                          double min_crater_coverage, const py::object& out, const py::object& report) {
+  const std::string report_path = report_path_of(report);
   WeldLayersJobOptions options;
   options.eroded_path = path_of(eroded);
   options.reference_path = path_of(reference);
@@ -51,10 +57,12 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
   options.weld.min_coverage_pct = min_coverage;
   options.weld.min_crater_coverage_pct = min_crater_coverage;
   options.out_path = path_of(out);
+  options.keep_geometry = !report_path.empty();
   const WeldLayersJobResult job = [&] {
     py::gil_scoped_release release;
     return run_weld_layers(options);
   }();
+  write_report(report_path, weld_layers_report(options, job));
   // The CSV's rows (layer, path, point, normal), as arrays.
   std::vector<std::int32_t> layer, path;
   std::vector<Eigen::Vector3d> points, normals;
@@ -76,7 +84,8 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
                       const std::optional<std::vector<double>>& web_normal, bool web_plane,
                       const py::object& second_edge, double web_width, const std::string& direction,
                       double knot_spacing, double outlier_sigma, double chord_tolerance, double max_gap, double noise,
-                      const py::object& out) {
+                      const py::object& out, const py::object& report) {
+  const std::string report_path = report_path_of(report);
   ProfileRequest request;
   request.edge_path = path_of(edge);
   request.features_path = path_of(features);
@@ -95,11 +104,13 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
   request.chord_tolerance_mm = chord_tolerance;
   request.max_gap_mm = max_gap;
   request.noise_mm = noise;
-  const ProfileJobOptions options = profile_job_options(request);
+  ProfileJobOptions options = profile_job_options(request);
+  options.keep_geometry = !report_path.empty();
   const ProfileJobResult job = [&] {
     py::gil_scoped_release release;
     return run_profile(options);
   }();
+  write_report(report_path, profile_report(options, job));
   // The CSV's rows: the feature (index into `features`), where to cut, the web normal, the cut direction.
   std::vector<std::int32_t> feature;
   std::vector<Eigen::Vector3d> points, normals, directions;
@@ -177,7 +188,7 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
                                       "weld_standoff",    "k_normals",
                                       "k_refine",         "out_path",
                                       "out_cut",          "out_weld",
-                                      "progress"};
+                                      "report",           "progress"};
   for (const auto& item : kw) {
     const std::string name = py::str(item.first);
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return name == k; }) == std::end(known)) {
@@ -211,10 +222,13 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   o.out_path = path_of(take("out_path"));
   o.out_cut = path_of(take("out_cut"));
   o.out_weld = path_of(take("out_weld"));
+  const std::string report_path = report_path_of(take("report"));
   TubeJointJobOptions options = tube_joint_job_options(request);
+  options.keep_geometry = !report_path.empty();
   const Progress progress(take("progress"));
   options.solve.progress = progress.function();
   TubeJointJobResult job = released(progress, [&] { return run_tube_joint(options); });
+  write_report(report_path, tube_joint_report(options, job));
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
@@ -309,7 +323,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
                   "neighbourhood", "stability", "max_distance", "coarse_max_distance", "scan_voxel", "no_joint",
                   "joint_weight", "joint_damping", "max_iterations", "min_edge_points", "edge_radius", "max_edge_gap",
                   "outlier_ratio", "max_offset", "normal_smoothing", "normals", "truth", "out_trajectory", "out_rows",
-                  "progress"});
+                  "report", "progress"});
   const auto take = [&kw](const char* name) {
     return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
   };
@@ -326,6 +340,8 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   options.truth_path = path_of(take("truth"));
   options.out_trajectory_path = path_of(take("out_trajectory"));
   options.out_rows_path = path_of(take("out_rows"));
+  const std::string report_path = report_path_of(take("report"));
+  options.keep_geometry = !report_path.empty();
   SicpCompensationOptions& o = options.compensation;
   std::string model = "sicp", fit = "parabola", normals = o.normals.from_scan ? "scan" : "rotate";
   bool no_joint = false;
@@ -356,6 +372,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   const Progress progress(take("progress"));
   options.progress = progress.function();
   SicpJobResult result = released(progress, [&] { return run_sicp(options); });
+  write_report(report_path, sicp_report(options, result));
   const nlohmann::json j = sicp_json(result);
   // The compensated trajectory only when it can be trusted (the CLI writes it only then): empty otherwise.
   Trajectory& t = result.compensation.trajectory;
@@ -377,7 +394,7 @@ void bind_toolpath_jobs(py::module_& m) {
         arg("torch_distance") = weld.torch_distance_mm, arg("layers") = weld.layers,
         arg("depth_threshold") = weld.depth_threshold_mm, arg("outward") = weld.outward_side, arg("bias") = "check",
         arg("min_coverage") = weld.min_coverage_pct, arg("min_crater_coverage") = weld.min_crater_coverage_pct,
-        arg("out") = py::none());
+        arg("out") = py::none(), arg("report") = py::none());
   const ProfileRequest profile;
   m.def("profile", &job_profile, arg("edge"), arg("features"), py::kw_only(), arg("model") = profile.model,
         arg("web_normal") = py::none(), arg("web_plane") = profile.web_plane,
@@ -385,7 +402,7 @@ void bind_toolpath_jobs(py::module_& m) {
         arg("direction") = profile.direction, arg("knot_spacing") = profile.knot_spacing_mm,
         arg("outlier_sigma") = profile.outlier_sigma, arg("chord_tolerance") = profile.chord_tolerance_mm,
         arg("max_gap") = profile.max_gap_mm, arg("noise") = profile.noise_mm,
-        arg("out") = py::none());
+        arg("out") = py::none(), arg("report") = py::none());
   // Keyword arguments as the CLI's flags (tube_joint_json.h's TubeJointRequest holds their defaults); see
   // conform.tube_joint in __init__.py for the list.
   m.def("tube_joint", &job_tube_joint, arg("leg"), arg("stub"));

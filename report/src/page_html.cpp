@@ -1,8 +1,10 @@
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/io.h"
 #include "conform/report/html.h"
 #include "report_detail.h"
 
@@ -119,6 +121,16 @@ std::string utc_now_text() {
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", &utc);
   return text;
+}
+
+std::string report_date() {
+  const char* fixed = std::getenv("CONFORM_REPORT_DATE");
+  return fixed != nullptr ? std::string(fixed) : utc_now_text();
+}
+
+bool is_report_path(const std::string& path) {
+  const std::string extension = file_extension(path);
+  return extension == ".html" || extension == ".htm";
 }
 
 std::string render_html(const Page& page) {

@@ -20,5 +20,10 @@ void write_html(const std::string& path, const Page& page);
 const char* conform_version();
 // The current time, UTC, "2026-11-23 17:40 UTC" (for Page::date).
 std::string utc_now_text();
+// The date a job's page shows (the CLI's --report, Python's report=): utc_now_text(), or the value of the environment
+// variable CONFORM_REPORT_DATE when it is set (same input, same bytes, for tests and reproducible builds).
+std::string report_date();
+// Whether `path` names a report: it ends in .html or .htm (any case).
+bool is_report_path(const std::string& path);
 
 }  // namespace conform::html
