@@ -87,7 +87,7 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   options.keep_geometry = !report_path.empty();
   CompareResult result = released(progress, [&] { return run_compare(options); });
   const nlohmann::json j = compare_json(options, result, units);
-  write_report(report_path, compare_report(options, result, j, ""));
+  if (!report_path.empty()) write_report(report_path, compare_report(options, result, j, ""));
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   arrays["deviation_mm"] = owned(std::move(result.deviation.deviation_mm));
@@ -125,7 +125,7 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   options.keep_geometry = !report_path.empty();
   const AlignResult result = released(progress, [&] { return run_align(options); });
   const nlohmann::json j = align_json(result);
-  write_report(report_path, align_report(options, result, j, ""));
+  if (!report_path.empty()) write_report(report_path, align_report(options, result, j, ""));
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   return answer(j, arrays);
@@ -284,7 +284,7 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
   options.fit.progress = progress.function();
   FitCylinderJobResult result = released(progress, [&] { return run_fit_cylinder(options); });
   const nlohmann::json j = fit_cylinder_json(result);
-  write_report(report_path, fit_cylinder_report(options, result, j, ""));
+  if (!report_path.empty()) write_report(report_path, fit_cylinder_report(options, result, j, ""));
   std::vector<std::uint8_t> inlier(result.points, 0);
   for (int i : result.fit.inliers) inlier[static_cast<std::size_t>(i)] = 1;
   py::dict arrays;
@@ -316,7 +316,7 @@ py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pit
     return run_saddle(options);
   }();
   const nlohmann::json j = saddle_json(request, result);
-  write_report(report_path, saddle_report(request, options, result));
+  if (!report_path.empty()) write_report(report_path, saddle_report(request, options, result));
   std::vector<double> theta, pose, step;
   std::vector<Eigen::Vector3d> position;
   for (const SaddlePoint& p : result.saddle.points) {

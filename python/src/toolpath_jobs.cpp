@@ -62,7 +62,7 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
     py::gil_scoped_release release;
     return run_weld_layers(options);
   }();
-  write_report(report_path, weld_layers_report(options, job));
+  if (!report_path.empty()) write_report(report_path, weld_layers_report(options, job));
   // The CSV's rows (layer, path, point, normal), as arrays.
   std::vector<std::int32_t> layer, path;
   std::vector<Eigen::Vector3d> points, normals;
@@ -110,7 +110,7 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
     py::gil_scoped_release release;
     return run_profile(options);
   }();
-  write_report(report_path, profile_report(options, job));
+  if (!report_path.empty()) write_report(report_path, profile_report(options, job));
   // The CSV's rows: the feature (index into `features`), where to cut, the web normal, the cut direction.
   std::vector<std::int32_t> feature;
   std::vector<Eigen::Vector3d> points, normals, directions;
@@ -228,7 +228,7 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   const Progress progress(take("progress"));
   options.solve.progress = progress.function();
   TubeJointJobResult job = released(progress, [&] { return run_tube_joint(options); });
-  write_report(report_path, tube_joint_report(options, job));
+  if (!report_path.empty()) write_report(report_path, tube_joint_report(options, job));
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
@@ -372,7 +372,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   const Progress progress(take("progress"));
   options.progress = progress.function();
   SicpJobResult result = released(progress, [&] { return run_sicp(options); });
-  write_report(report_path, sicp_report(options, result));
+  if (!report_path.empty()) write_report(report_path, sicp_report(options, result));
   const nlohmann::json j = sicp_json(result);
   // The compensated trajectory only when it can be trusted (the CLI writes it only then): empty otherwise.
   Trajectory& t = result.compensation.trajectory;
