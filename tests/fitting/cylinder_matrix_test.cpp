@@ -168,7 +168,7 @@ TEST(FitCylinderMatrix, OvalityPercentOfDiameter) {
 }
 
 // Partial arcs of oval tubes: a short arc does not define the mean circle of an oval section (it measures the local
-// curvature), so the fit may only be within the bound or say it is doubtful.
+// curvature), so the fit may only be within the bound or say it is doubtful. And a seam inside a round patch.
 TEST(FitCylinderMatrix, PartialArcs) {
   std::vector<Case> cases;
   for (double arc : {120.0, 180.0, 240.0, 300.0}) {
@@ -183,6 +183,16 @@ TEST(FitCylinderMatrix, PartialArcs) {
         cases.push_back(c);
       }
     }
+  }
+  // A 2 mm seam inside a round patch with 2% outliers: left out, not widened into.
+  for (double arc : {120.0, 240.0}) {
+    Case c;
+    c.arc_deg = arc;
+    c.seam_mm = 2.0;
+    c.outliers = 0.02;
+    c.noise_mm = 0.05;
+    c.seed = 4;
+    cases.push_back(c);
   }
   expect_matrix(cases, false);
 }
