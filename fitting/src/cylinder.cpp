@@ -16,6 +16,7 @@
 #include "cylinder_checks.h"
 #include "cylinder_ransac.h"
 #include "cylinder_refine.h"
+#include "cylinder_shape.h"
 
 namespace conform {
 namespace {
@@ -130,12 +131,13 @@ struct Rounds {
 // systematic deviation wider than the first threshold (an oval tube) widens the next one until the tube is in.
 // While the set still moves, a round solves to kRoundTolerance only; once it holds still, one more round solves to
 // the options' tight tolerance and must leave it unchanged too.
-Rounds refine_in_rounds(const Centred& data, const detail::RansacOutcome& ransac, double threshold,
-                        const CylinderFitOptions& o) {
-  const double floor = kRelativeFloor * data.extent_mm;
+// min_threshold_mm: the automatic threshold never drops below it (the widening of a cut-off shape, below).
+Rounds refine_in_rounds(const Centred& data, const Cylinder& start, std::vector<int> start_inliers, double threshold,
+                        double min_threshold_mm, const CylinderFitOptions& o) {
+  const double floor = std::max(kRelativeFloor * data.extent_mm, min_threshold_mm);
   Rounds out;
-  out.model = ransac.model;
-  out.inliers = ransac.inliers;
+  out.model = start;
+  out.inliers = std::move(start_inliers);
   out.threshold = threshold;
   std::vector<double> first;
   for (int i : out.inliers) first.push_back(signed_distance(out.model, data.points[static_cast<std::size_t>(i)]));
@@ -177,6 +179,55 @@ std::string fixed(double v, int decimals) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
   return buffer;
+}
+
+// A deviation that the band cuts off over more than this share of the azimuth is the shape's, not a seam's.
+constexpr double kCutOffShare = 0.1;
+constexpr int kWidenPasses = 4;
+
+// The self-check of the rounds' answer: where the surface's median residual lies outside the inlier band over a wide
+// share of the azimuth, smoothly (cylinder_shape.h), the band has cut off a systematic deviation of the shape (an oval
+// tube) and the rounds settled on the part a circle hugs. Widen the band to the smooth deviation plus the noise
+// about it, restart from the points on that smooth sheet (a seam ridge and outliers stay off it), refine again, and
+// repeat while the band moves. A given threshold is kept; a band still cutting off the shape is then a warning.
+detail::ShapeProfile widen_cut_off_shape(const Centred& data, Rounds& rounds, const CylinderFitOptions& o,
+                                         CylinderFitResult& result) {
+  detail::ShapeProfile shape = detail::shape_profile(data.points, rounds.model, rounds.threshold, rounds.sigma);
+  const auto cut = [](const detail::ShapeProfile& s) { return s.cut_off_share > kCutOffShare; };
+  for (int pass = 0; pass < kWidenPasses && o.threshold_mm <= 0.0 && (cut(shape) || shape.off_mean_circle()); ++pass) {
+    // A closed turn: start from the roundness reference circle of the profile (harmonics 0 and 1 moved into the
+    // radius and the centre), whose basin the refinement then stays in.
+    const Cylinder start = shape.closed ? shape.mean_circle(rounds.model) : rounds.model;
+    const detail::ShapeProfile about =
+        shape.closed ? detail::shape_profile(data.points, start, rounds.threshold, rounds.sigma) : shape;
+    const double band = about.max_abs_mm + o.inlier_sigmas * about.sheet_sigma_mm;
+    const double sheet_band = std::max(rounds.threshold, o.inlier_sigmas * about.sheet_sigma_mm);
+    std::vector<int> sheet;
+    for (std::size_t i = 0; i < data.points.size(); ++i) {
+      const Eigen::Vector3d& p = data.points[i];
+      if (std::abs(signed_distance(start, p) - about.at(start, p)) <= sheet_band) sheet.push_back(static_cast<int>(i));
+    }
+    const int earlier_rounds = rounds.rounds, earlier_iterations = rounds.iterations;
+    rounds = refine_in_rounds(data, start, std::move(sheet), band, band, o);
+    rounds.rounds += earlier_rounds;
+    rounds.iterations += earlier_iterations;
+    shape = detail::shape_profile(data.points, rounds.model, rounds.threshold, rounds.sigma);
+  }
+  if (cut(shape)) {
+    const double needed = shape.max_abs_mm + o.inlier_sigmas * shape.sheet_sigma_mm;
+    result.warnings.push_back(
+        "the inlier band (" + fixed(rounds.threshold, 4) + " mm) cuts off a systematic deviation of the cross-section " +
+        "of up to " + fixed(shape.max_abs_mm, 4) + " mm (ovality?) over " + fixed(100.0 * shape.cut_off_share, 0) +
+        "% of the scanned azimuth: the cylinder fits part of the tube only, its axis and radius are not the tube's " +
+        "mean circle; " +
+        (o.threshold_mm > 0.0 ? "raise --threshold to " + fixed(needed, 3) + " mm or use 0 (automatic)"
+                              : "the automatic band did not settle: check the scan for a deformation"));
+  } else if (shape.off_mean_circle()) {
+    result.warnings.push_back("the residuals of this closed tube are off-centre by " + fixed(shape.off_centre_mm, 4) +
+                              " mm (their first harmonic): the fitted axis is not the mean circle's; check the scan "
+                              "for a deformation the fit cannot follow");
+  }
+  return shape;
 }
 
 void fail(CylinderFitResult& r, CylinderFailure failure, std::string why) {
@@ -302,9 +353,12 @@ CylinderFitResult fit_cylinder(const std::vector<Eigen::Vector3d>& points, const
   }
 
   report(options.progress, "cylinder: refine", 0.0);
-  const Rounds rounds = refine_in_rounds(data, ransac, ransac_threshold, options);
+  Rounds rounds = refine_in_rounds(data, ransac.model, ransac.inliers, ransac_threshold, 0.0, options);
+  const detail::ShapeProfile shape = widen_cut_off_shape(data, rounds, options, result);
   Cylinder centred_model = canonical(data, rounds, options);
   describe(result, data, rounds, centred_model);
+  result.shape_deviation_mm = shape.max_abs_mm;
+  detail::judge_shape_ambiguity(data.points, shape, centred_model, options.max_shape_ambiguity_mm, result);
   result.cylinder = centred_model;
   result.cylinder.axis_point += data.centroid;
   judge(result, rounds, options, floor);

@@ -84,6 +84,7 @@ bool CylinderFitOptions::IsValid(std::string* error) const {
     return fail(error, "min_sagitta_sigmas must be >= 0");
   }
   if (!(sphere_ratio >= 0.0 && sphere_ratio <= 1.0)) return fail(error, "sphere_ratio must be in [0, 1]");
+  if (!(max_shape_ambiguity_mm >= 0.0)) return fail(error, "max_shape_ambiguity_mm must be >= 0");
   if (normal_neighbors < 3) return fail(error, "normal_neighbors must be >= 3");
   return true;
 }

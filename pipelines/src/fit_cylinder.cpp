@@ -137,6 +137,9 @@ FitCylinderJobResult run_fit_cylinder(const FitCylinderJobOptions& options) {
     throw Error(options.input_path + ": " + e.what());
   }
   if (result.normals == NormalSource::kCloudPca) result.fit.side = CylinderSide::kUnknown;
+  for (const std::string& w : result.fit.warnings) {
+    result.warnings.push_back("fit-cylinder: " + options.input_path + ": " + w);
+  }
   if (!options.out_path.empty()) {
     write_file_atomically(options.out_path, cylinder_residuals_csv(points, result.fit));
     result.out_path = options.out_path;

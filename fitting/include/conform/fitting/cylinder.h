@@ -83,6 +83,8 @@ struct CylinderFitOptions {
   double min_inlier_fraction = 0.2;  // fewer inliers than this share of the points: kNoConsensus
   double min_sagitta_sigmas = 3.0;   // the arc's depth r (1 - cos(arc / 2)) must exceed this many noise sigmas
   double sphere_ratio = 0.5;         // kSphere when a sphere's median |residual| is below this share of the cylinder's
+  double max_shape_ambiguity_mm = 0.05;  // warn when an ovality the residuals cannot show would move the axis or
+                                        // the radius by more than this (CylinderFitResult::shape_axis_ambiguity_mm)
 
   int normal_neighbors = 16;  // k of the PCA normals estimated when the input has none (core/normals.h)
   ProgressFn progress;        // stages "cylinder: normals", "cylinder: ransac", "cylinder: refine"
@@ -116,6 +118,20 @@ struct CylinderFitResult {
   double radius_std_mm = 0.0;       // sqrt of the radius variance
   double axis_angle_std_rad = 0.0;  // sqrt of the largest eigenvalue of the tilt block
   double axis_point_std_mm = 0.0;   // sqrt of the largest eigenvalue of the axis-point block
+
+  // The cross-section's systematic deviation from the fitted circle: the largest |median residual| over the scanned
+  // azimuth of a smooth profile (harmonics 0-2 of the azimuth, fitted to 5 deg bins; a narrow seam ridge and outliers
+  // left out). On a full oval tube about the ovality amplitude a (r = R + a cos 2 theta); ~0 on a round one.
+  double shape_deviation_mm = 0.0;
+  // What a partial arc cannot tell (an oval section fits a circle over a short arc with the centre and radius moved):
+  // the largest ovality a the residuals would not show (or the one they show, if larger), and how far it would move
+  // the axis and the radius from the tube's mean circle (worst phase). 0 over the full turn.
+  double hidden_ovality_mm = 0.0;
+  double shape_axis_ambiguity_mm = 0.0;
+  double shape_radius_ambiguity_mm = 0.0;
+  // What the fit found doubtful without failing (e.g. a band that cuts off a systematic deviation), in words a user
+  // can act on; empty when there is nothing to say.
+  std::vector<std::string> warnings;
 
   double plane_rms_mm = 0.0;        // a plane through the inliers (PCA): what the curvature must beat
   double sphere_median_mm = 0.0;    // median |residual| of the best algebraic sphere through all points

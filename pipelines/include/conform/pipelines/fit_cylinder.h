@@ -48,7 +48,7 @@ struct FitCylinderJobResult {
   bool surface_points = false;                // the points are samples of the mesh's surface, not its vertices
   std::size_t input_faces = 0;                // the input mesh's faces (0: a cloud)
   NormalSource normals = NormalSource::kFile;
-  std::vector<std::string> warnings;  // what the reader noticed
+  std::vector<std::string> warnings;  // what the reader noticed, then what the fit found doubtful (fit.warnings)
   std::vector<CadReport> cad_inputs;  // the input, when it was CAD
   std::string out_path;               // the CSV written; empty when none was asked for
   std::vector<Eigen::Vector3d> points_mm;  // with options.keep_geometry: the input's points (else empty)
