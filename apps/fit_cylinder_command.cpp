@@ -38,6 +38,10 @@ class FitCylinderCommand : public Command {
     c.add_option("--axis-tolerance-deg", axis_tolerance_deg_, "Largest angle of the axis from --axis, deg");
     c.add_option("--normals-k", options_.fit.normal_neighbors, "Neighbours of the PCA normals when the file has none");
     c.add_option("--seed", options_.fit.seed, "Seed of the RANSAC draws");
+    c.add_option("--max-shape-ambiguity", options_.fit.max_shape_ambiguity_mm,
+                 "Warn when an ovality the residuals cannot show (a partial arc) could move the axis or the radius by "
+                 "more than this, mm")
+        ->check(CLI::NonNegativeNumber);
     c.add_option("--out", options_.out_path, "CSV of every point: i,x_mm,y_mm,z_mm,distance_mm,inlier");
     add_report_option(c, report_path_);
     c.add_option("--points", points_,
@@ -103,6 +107,12 @@ class FitCylinderCommand : public Command {
     std::printf("inliers       %zu (%.2f %%) within %.4f mm; rms %.4f mm, noise sigma %.4f mm\n", f.inliers.size(),
                 100.0 * f.inlier_fraction, f.threshold_mm, f.rms_mm, f.noise_sigma_mm);
     std::printf("arc deg       %.2f  (%s surface)\n", degrees(f.arc_rad), to_string(f.side));
+    std::printf("shape mm      %.4f systematic deviation from the circle", f.shape_deviation_mm);
+    if (f.shape_axis_ambiguity_mm > 0.0 || f.shape_radius_ambiguity_mm > 0.0) {
+      std::printf("; the ovality these residuals allow (%.4f) moves the axis up to %.4f, the radius up to %.4f",
+                  f.hidden_ovality_mm, f.shape_axis_ambiguity_mm, f.shape_radius_ambiguity_mm);
+    }
+    std::printf("\n");
     std::printf("solver        %d RANSAC draws, %d rounds, %d LM iterations, %s\n", f.ransac_iterations,
                 f.refine_rounds, f.solver_iterations, f.converged ? "converged" : "not converged");
     std::printf("out           %s\n", job.out_path.empty() ? "(none)" : job.out_path.c_str());

@@ -84,7 +84,7 @@ def pose_error(transform_a, transform_b, **options):
 
 def fit_cylinder(input, **options):
     """`conform fit-cylinder`: axis, radius, inliers of a tube scan. Options as the CLI's flags: threshold,
-    min_radius, max_radius, axis, axis_tolerance_deg, normals_k, seed, points (auto, vertices, surface),
+    min_radius, max_radius, axis, axis_tolerance_deg, normals_k, seed, max_shape_ambiguity, points (auto, vertices, surface),
     surface_samples, out, report, progress. Arrays: inlier (N,) bool."""
     return _result("fit_cylinder", _conform.fit_cylinder(input, **options))
 

@@ -253,7 +253,8 @@ py::tuple job_pose_error(const py::object& a, const py::object& b, const std::st
 
 py::tuple job_fit_cylinder(const py::object& input, double threshold, double min_radius,
                            std::optional<double> max_radius, std::optional<std::vector<double>> axis,
-                           double axis_tolerance_deg, int normals_k, std::uint64_t seed, const std::string& points,
+                           double axis_tolerance_deg, int normals_k, std::uint64_t seed, double max_shape_ambiguity,
+                           const std::string& points,
                            std::size_t surface_samples, const py::object& out, const py::object& report,
                            const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
@@ -274,6 +275,7 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
   options.fit.axis_prior_tolerance_rad = axis_tolerance_deg / 180.0 * 3.141592653589793;
   options.fit.normal_neighbors = normals_k;
   options.fit.seed = seed;
+  options.fit.max_shape_ambiguity_mm = max_shape_ambiguity;
   options.points = points == "vertices"  ? CylinderPoints::kVertices
                    : points == "surface" ? CylinderPoints::kSurface
                                          : CylinderPoints::kAuto;
@@ -401,7 +403,8 @@ PYBIND11_MODULE(_conform, m) {
   m.def("fit_cylinder", &job_fit_cylinder, arg("input"), py::kw_only(), arg("threshold") = cylinder.fit.threshold_mm,
         arg("min_radius") = cylinder.fit.min_radius_mm, arg("max_radius") = py::none(), arg("axis") = py::none(),
         arg("axis_tolerance_deg") = 10.0, arg("normals_k") = cylinder.fit.normal_neighbors,
-        arg("seed") = cylinder.fit.seed, arg("points") = to_string(cylinder.points),
+        arg("seed") = cylinder.fit.seed, arg("max_shape_ambiguity") = cylinder.fit.max_shape_ambiguity_mm,
+        arg("points") = to_string(cylinder.points),
         arg("surface_samples") = cylinder.surface_samples, arg("out") = py::none(), arg("report") = py::none(),
         arg("progress") = py::none());
   const SaddleRequest saddle_defaults;
