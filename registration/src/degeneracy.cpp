@@ -214,8 +214,7 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
     gaussians(i) = noise_mm * noise_mm / (count * lambdas(i));
     // The sandwich sees the residuals where this direction is measured; away from the optimum they are the pose's
     // error, not noise, so only the robust noise decides what is held (else a wrong start would hold itself).
-    variances(i) =
-        std::max(gaussians(i), u.dot(matrix.residual_moment * u) / (count * lambdas(i) * lambdas(i)));
+    variances(i) = std::max(gaussians(i), u.dot(matrix.residual_moment * u) / (count * lambdas(i) * lambdas(i)));
     scaled_covariance.noalias() += variances(i) * u * u.transpose();
   }
   if (matrix.clusters > 1 && variances.minCoeff() > 0.0) {

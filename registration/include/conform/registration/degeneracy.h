@@ -122,10 +122,10 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 // that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment), A = V diag(variances) V^T;
 // with a cluster moment C (matrix.clusters > 0) the covariance is A + (S - A)_+, S = H^-1 C H^-1 / N the
 // cluster-robust sandwich over the free degrees of freedom and (.)_+ the positive part of a symmetric matrix: the
-// least change of A that bounds both A and S from above, so every direction's std is at least either's. start_std 0 (the default here): the start is exact, every loose direction is held.
-// Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
-// second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
-// over the N points the std assumes independent.
+// least change of A that bounds both A and S from above, so every direction's std is at least either's. start_std 0
+// (the default here): the start is exact, every loose direction is held. Directions below min_relative of the largest
+// eigenvalue are held whatever their std: they are fixed only by second-order effects (a mesh's facets, the normals'
+// estimate) whose errors are systematic and do not average out over the N points the std assumes independent.
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
                                     double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0,
                                     double start_std_mm = 0.0, double start_std_rad = 0.0);
