@@ -87,9 +87,11 @@ class AlignCommand : public Command {
                  "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed");
     c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");
     c.add_option("--free-tolerance-mm", options_.free_tolerance_mm,
-                 "Hold a motion at the start when its predicted std (from the residuals' noise and the surface's "
-                 "constraint) exceeds this along an axis, mm");
-    c.add_option("--free-tolerance-deg", options_.free_tolerance_deg, "The same about an axis, deg");
+                 "The accuracy asked of the pose, mm: a motion whose predicted std (from the residuals and the "
+                 "surface's constraint) exceeds this along an axis is loose; a pose from --init pca/fpfh must "
+                 "reach it on every estimated motion, or it is refused (exit 1)");
+    c.add_option("--free-tolerance-deg", options_.free_tolerance_deg,
+                 "The same about an axis, deg (also the accuracy a coarse-started pose must reach)");
     c.add_option("--max-noise-ratio", options_.max_noise_ratio,
                  "Residuals more than this many times the scan's own noise: the pose is not trusted (exit 1); 0: "
                  "no check");

@@ -99,6 +99,28 @@ void record_degenerate(const Eigen::MatrixXd& P, const Eigen::SelfAdjointEigenSo
   if (report.length_scale_mm > 0.0) split_motions(D, matrix.H, largest, scaled_covariance, report);
 }
 
+// A + (S - A)_+ for A = U diag(a) U^T (U: the free eigenvectors, orthonormal columns; a > 0) and
+// S = U diag(1/lambda) U^T C U diag(1/lambda) U^T / N, the cluster-robust sandwich: in A's whitened coordinates
+// (y = diag(a)^-1/2 U^T x) A is the identity and the positive part is that of X - I, X = diag(a)^-1/2 U^T S U
+// diag(a)^-1/2, which keeps a tube axis' huge variance from swamping the millimetre ones in rounding.
+Matrix6d bound_by_cluster_sandwich(const Eigen::MatrixXd& U, const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+                                   const Matrix6d& C, double count) {
+  const Eigen::Index k = U.cols();
+  const Eigen::VectorXd root = a.cwiseSqrt();
+  Eigen::MatrixXd X = U.transpose() * C * U / count;  // the middle, in the eigenbasis
+  for (Eigen::Index i = 0; i < k; ++i) {
+    for (Eigen::Index j = 0; j < k; ++j) X(i, j) /= lambda(i) * lambda(j) * root(i) * root(j);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> excess(X - Eigen::MatrixXd::Identity(k, k));
+  Eigen::MatrixXd Y = Eigen::MatrixXd::Identity(k, k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const double e = excess.eigenvalues()(i);
+    if (e > 0.0) Y.noalias() += e * excess.eigenvectors().col(i) * excess.eigenvectors().col(i).transpose();
+  }
+  const Eigen::MatrixXd B = U * root.asDiagonal();
+  return B * Y * B.transpose();
+}
+
 DegeneracyReport start_report(const PlaneNormalMatrix& matrix) {
   DegeneracyReport report;
   report.centre = matrix.centre;
@@ -139,6 +161,14 @@ PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, con
       [&](std::size_t i) -> const Eigen::Vector3d& { return n[i]; });
 }
 
+void add_cluster_moment(const std::vector<Eigen::Vector3d>& q, const std::vector<Eigen::Vector3d>& n,
+                        const std::vector<double>& psi, std::size_t clusters, PlaneNormalMatrix& matrix) {
+  detail::add_cluster_moment(
+      std::min({q.size(), n.size(), psi.size()}), [&](std::size_t i) -> const Eigen::Vector3d& { return q[i]; },
+      [&](std::size_t i) -> const Eigen::Vector3d& { return n[i]; }, [&](std::size_t i) { return psi[i]; }, clusters,
+      matrix);
+}
+
 DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof) {
   DegeneracyReport report = start_report(matrix);
   report.threshold = threshold;
@@ -173,24 +203,34 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
   const double count = static_cast<double>(matrix.count);
   // An exactly unconstrained direction gets the variance of an eigenvalue 1e-15 of the largest: huge, finite.
   const double floor = std::max(largest * 1e-15, 1e-300);
+  const Eigen::Index k = report.eigenvalues.size();
+  const Eigen::MatrixXd U = P * solver.eigenvectors();
+  Eigen::VectorXd lambdas(k), variances(k), gaussians(k);
   Matrix6d scaled_covariance = Matrix6d::Zero();
-  std::vector<Eigen::Index> degenerate;
-  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) {
-    const Vector6d u = P * solver.eigenvectors().col(i);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Vector6d u = U.col(i);
     // sigma^2 (N H)^-1 along the eigenvector: the Gauss-Newton covariance of the scaled twist.
-    const double lambda = std::max(report.eigenvalues(i), floor);
-    const double gaussian = noise_mm * noise_mm / (count * lambda);
+    lambdas(i) = std::max(report.eigenvalues(i), floor);
+    gaussians(i) = noise_mm * noise_mm / (count * lambdas(i));
     // The sandwich sees the residuals where this direction is measured; away from the optimum they are the pose's
     // error, not noise, so only the robust noise decides what is held (else a wrong start would hold itself).
-    const double variance = std::max(gaussian, u.dot(matrix.residual_moment * u) / (count * lambda * lambda));
-    scaled_covariance.noalias() += variance * u * u.transpose();
+    variances(i) = std::max(gaussians(i), u.dot(matrix.residual_moment * u) / (count * lambdas(i) * lambdas(i)));
+    scaled_covariance.noalias() += variances(i) * u * u.transpose();
+  }
+  if (matrix.clusters > 1 && variances.minCoeff() > 0.0) {
+    scaled_covariance = bound_by_cluster_sandwich(U, variances, lambdas, matrix.cluster_moment, count);
+  }
+  std::vector<Eigen::Index> degenerate;
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Vector6d u = U.col(i);
+    const double variance = std::max(0.0, u.dot(scaled_covariance * u));
     ConstraintDirection d;
     d.rotation = u.head<3>() / L;
     d.translation = u.tail<3>();
     d.relative_eigenvalue = largest > 0.0 ? report.eigenvalues(i) / largest : 0.0;
     d.std_rad = std::sqrt(variance) * d.rotation.norm();
     d.std_mm = std::sqrt(variance) * d.translation.norm();
-    const double gaussian_std = std::sqrt(gaussian);
+    const double gaussian_std = std::sqrt(gaussians(i));
     // A direction measured within a factor of ten of the best (in std) is never held: holding it cannot beat the
     // data, however noisy (a LiDAR scene's residuals are centimetres).
     // Held only where the data cannot do better than the start: loose beyond the tolerance and the start's std.

@@ -86,6 +86,25 @@ void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t sc
   pass.held = f.degeneracy.degenerate_basis.size();
 }
 
+// Once, at the end of a pass (not in the loop): the record of the last pairs, its covariance bounded by the
+// cluster-robust sandwich over spatial blocks (degeneracy.h). The scan is in Z-curve order (pairs.h), so contiguous
+// runs of the inliers are compact patches.
+void record_final(const std::vector<Pair>& pairs, std::size_t scan_size, const IcpOptions& options, Pass& pass,
+                  IcpResult& result) {
+  if (options.covariance_clusters < 2 || pairs.empty()) return;
+  StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
+  if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) return;
+  detail::add_cluster_moment(
+      f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
+      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; },
+      [&](std::size_t k) {
+        const Pair& p = pairs[f.inliers[k]];
+        return f.weights[k] * p.normal.dot(p.q - p.target);
+      },
+      options.covariance_clusters, f.plane);
+  record(pairs, f, scan_size, options, pass, result);
+}
+
 void check_input(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
                  const Eigen::Isometry3d& T_ref_scan_init, const IcpOptions& options) {
   std::string why;
@@ -170,6 +189,7 @@ IcpResult run_pass(const ScanData& scan, const IcpReference& reference, const Ei
     detail::find_pairs(scan.points, scan.normals, result.T_ref_scan, reference, rules, pairs);
     record(pairs, evaluate(pairs, options, pass.hold_noise_mm), scan.points.size(), options, pass, result);
   }
+  record_final(pairs, scan.points.size(), options, pass, result);
   if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {
     result.converged = false;
     result.termination = IcpTermination::kInsufficientOverlap;

@@ -59,6 +59,31 @@ PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalA
   return m;
 }
 
+// The cluster-robust middle of the sandwich (degeneracy.h, PlaneNormalMatrix::cluster_moment) over `clusters`
+// contiguous runs of [0, n) (Liang & Zeger 1986, Eq. (2.5)'s middle term, with its small-sample factor K/(K-1)):
+// in a spatially ordered scan (z_order.h) a run is a compact patch. psi(i): the pair's robust score, the weighted
+// residual w_i r_i (mm). Sets matrix.cluster_moment and matrix.clusters; fewer than 2 runs: leaves them zero.
+template <typename PointAt, typename NormalAt, typename ScoreAt>
+void add_cluster_moment(std::size_t n, PointAt&& point, NormalAt&& normal, ScoreAt&& psi, std::size_t clusters,
+                        PlaneNormalMatrix& matrix) {
+  clusters = clusters < n ? clusters : n;
+  if (clusters < 2 || !(matrix.length_scale_mm > 0.0)) return;
+  const double inv_length = 1.0 / matrix.length_scale_mm;
+  Matrix6d B = Matrix6d::Zero();
+  for (std::size_t b = 0; b < clusters; ++b) {
+    Vector6d g = Vector6d::Zero();
+    for (std::size_t i = b * n / clusters, end = (b + 1) * n / clusters; i < end; ++i) {
+      const double r = psi(i);
+      g.head<3>() += r * (point(i) - matrix.centre).cross(normal(i)) * inv_length;
+      g.tail<3>() += r * normal(i);
+    }
+    B.noalias() += g * g.transpose();
+  }
+  const double K = static_cast<double>(clusters);
+  matrix.cluster_moment = B * (K / (K - 1.0)) / static_cast<double>(n);
+  matrix.clusters = clusters;
+}
+
 // Without residuals: no residual moment.
 template <typename PointAt, typename NormalAt>
 PlaneNormalMatrix plane_normal_matrix_of(std::size_t n, PointAt&& point, NormalAt&& normal) {

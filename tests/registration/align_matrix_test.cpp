@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -64,6 +66,21 @@ void write_points(const std::string& path, const std::vector<Eigen::Vector3d>& p
 std::pair<double, double> pose_errors(const Trial& t, const Eigen::Isometry3d& estimate) {
   const Eigen::Vector3d c = test::mean_point(t.scan);
   return {test::rotation_error_deg(estimate, t.truth), (estimate * c - t.truth * c).norm()};
+}
+
+// The error of the estimate in units of its predicted std, axis by axis (the covariance's coordinates: rotations
+// about the reference axes through its centre, translations): the largest |e_i| / std_i. Honest: a few at most.
+double error_in_std(const Trial& t, const AlignResult& r) {
+  const DegeneracyReport& d = r.icp.degeneracy;
+  const Eigen::Isometry3d E = r.icp.T_ref_scan * t.truth.inverse();
+  const Eigen::AngleAxisd aa(E.linear());
+  Eigen::Matrix<double, 6, 1> e;
+  e << aa.angle() * aa.axis(), E * d.centre - d.centre;
+  double worst = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    if (d.std(i) > 0.0) worst = std::max(worst, std::abs(e(i)) / d.std(i));
+  }
+  return worst;
 }
 
 RightFn within(double max_deg, double max_mm) {
@@ -113,9 +130,11 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
                 std::to_string(o.best_only_share).substr(0, 6) + "/" + std::to_string(o.only_share).substr(0, 6) + "]";
       }
     }
-    std::printf("  %s seed %d: %s %s, %.3f deg %.3f mm (start %.3f deg %.3f mm), start '%s', %d iterations, noise %.3f, held%s: %s\n", name,
-                seed, ok ? "right" : "WRONG", accepted ? "accepted" : "refused", deg, mm, start_deg, start_mm,
-                r.start.c_str(),
+    const Vector6d& sd = r.icp.degeneracy.std;
+    std::printf("  %s seed %d: %s %s, %.3f deg %.3f mm (start %.3f deg %.3f mm), std %.3f deg %.3f mm, error %.1f "
+                "std, start '%s', %d iterations, noise %.3f, held%s: %s\n",
+                name, seed, ok ? "right" : "WRONG", accepted ? "accepted" : "refused", deg, mm, start_deg, start_mm,
+                sd.head<3>().maxCoeff() * 180.0 / M_PI, sd.tail<3>().maxCoeff(), error_in_std(t, r), r.start.c_str(),
                 r.icp.iterations, r.icp.degeneracy.noise_mm, held.c_str(), r.verdict.summary.c_str());
     AlignResult start = r;
     start.icp.T_ref_scan = r.T_start;
@@ -156,7 +175,9 @@ Trial workpiece_trial(int seed, const Eigen::Isometry3d& T_ref_part, double nois
 // search found is trusted only when the fine fit fixes every motion this well (align_verdict.cpp). On these noisy
 // cloud references the error reaches 8 times the predicted std (a neighbouring minimum near sparse walls: 1.04 mm
 // off at a std of 0.13 mm, seen when the RANSAC stream changed), so the tolerance is the 1 mm bound / 8 with margin.
-// At 0.14 mm / 0.25 deg, tuned on one RANSAC stream, that pose was accepted.
+// At 0.14 mm / 0.25 deg, tuned on one RANSAC stream, that pose was accepted. The cluster-robust sandwich
+// (degeneracy.h) left the ratio unchanged (right poses up to 6.8 std on seeds 1-20; docs/align.md): the factor stays.
+// Each seed prints its error in units of its predicted std ("error N std").
 void profiler_tolerance(AlignOptions& options) {
   options.free_tolerance_mm = 0.1;
   options.free_tolerance_deg = 0.125;
@@ -250,7 +271,9 @@ TEST(AlignMatrixSymmetry, CylinderIsFreeOrRefused) {
   EXPECT_EQ(t.wrong_accepted, 0);
   // Its coarse candidates differ along the free motions only: the same answer, reported with those motions free,
   // verdict "check" (before issue 13's rule: ambiguous, refused 10/10).
-  EXPECT_GE(t.right, 7);  // measured 8 (10 before the free-motion probe at four times the step)
+  // Measured 7 (8 before the cluster-robust covariance bound made seed 4's axis tilt loose at the default 0.01 deg;
+  // 10 before the free-motion probe at four times the step).
+  EXPECT_GE(t.right, 7);
 }
 
 // Near-symmetry: the boss plate (boss_plate.h) turned 180 degrees fits all but the boss. The mirror pose must not

@@ -60,6 +60,12 @@ struct PlaneNormalMatrix {
   // sum r^2 J^T J / count (mm^2) when the residuals r are known: the middle of the sandwich (Huber-White) covariance
   // H^-1 M H^-1 / N, which sees residuals that are larger where the weak directions are measured. Zero: unknown.
   Matrix6d residual_moment = Matrix6d::Zero();
+  // The cluster-robust middle (Liang & Zeger 1986): K/(K-1) sum_b g_b g_b^T / count (mm^2) over K spatial blocks of
+  // the pairs, g_b = sum_{i in b} psi(r_i) J_i^T. Residuals that share a cause over a block (the bias of a reference
+  // cloud's normals along a whole step edge) add up in g_b where the per-pair moment treats them as independent.
+  // Zero: not computed (cluster_moment_of, once at the end of ICP).
+  Matrix6d cluster_moment = Matrix6d::Zero();
+  std::size_t clusters = 0;  // K
 };
 
 struct DegeneracyReport {
@@ -98,6 +104,12 @@ std::vector<DegenerateDirection> motions_of(const std::vector<Vector6d>& basis, 
 // H from scan points q (reference frame) and the unit reference normals they are paired with.
 PlaneNormalMatrix plane_normal_matrix(const std::vector<Eigen::Vector3d>& q, const std::vector<Eigen::Vector3d>& n);
 
+// Adds the cluster-robust middle (PlaneNormalMatrix::cluster_moment) of `matrix`, made from the same q and n, over
+// `clusters` contiguous runs of the pairs (spatially ordered pairs: compact patches), psi the pairs' robust scores
+// (weighted residuals along n, mm). Fewer than 2 runs: nothing added.
+void add_cluster_moment(const std::vector<Eigen::Vector3d>& q, const std::vector<Eigen::Vector3d>& n,
+                        const std::vector<double>& psi, std::size_t clusters, PlaneNormalMatrix& matrix);
+
 // The eigen-analysis of H over the free degrees of freedom, with the degenerate subspace split into pure
 // translations and rotations (axis through the point it passes closest to the centroid).
 DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double threshold, const FreeDof& free_dof = {});
@@ -107,11 +119,13 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 // start_std_mm) along, or max(tolerance_rad, start_std_rad) about, some axis (loose, and the start known better than
 // the data would give it), and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
 // the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of
-// that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment); the covariance is
-// V diag(variances) V^T. start_std 0 (the default here): the start is exact, every loose direction is held.
-// Directions below min_relative of the largest eigenvalue are held whatever their std: they are fixed only by
-// second-order effects (a mesh's facets, the normals' estimate) whose errors are systematic and do not average out
-// over the N points the std assumes independent.
+// that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment), A = V diag(variances) V^T;
+// with a cluster moment C (matrix.clusters > 0) the covariance is A + (S - A)_+, S = H^-1 C H^-1 / N the
+// cluster-robust sandwich over the free degrees of freedom and (.)_+ the positive part of a symmetric matrix: the
+// least change of A that bounds both A and S from above, so every direction's std is at least either's. start_std 0
+// (the default here): the start is exact, every loose direction is held. Directions below min_relative of the largest
+// eigenvalue are held whatever their std: they are fixed only by second-order effects (a mesh's facets, the normals'
+// estimate) whose errors are systematic and do not average out over the N points the std assumes independent.
 DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double noise_mm, double tolerance_mm,
                                     double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0,
                                     double start_std_mm = 0.0, double start_std_rad = 0.0);

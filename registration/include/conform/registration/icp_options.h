@@ -116,6 +116,11 @@ struct IcpOptions {
   // second-order effects fix them (a tube's axis against a faceted mesh: ~1e-5), with systematic errors that do not
   // average out. In [0, 1); the ribbed plate's weak but real direction is 2.7e-4.
   double free_relative_eigenvalue = 1e-4;
+  // The reported covariance is bounded below by the cluster-robust sandwich over this many spatial blocks of the
+  // final pairs (degeneracy.h; Liang & Zeger 1986): it sees residuals correlated within a patch, which the per-pair
+  // estimates count as independent. A bias shared by all the pairs that fix a direction is absorbed by the fit and
+  // seen by no residual-based estimate (docs/align.md, Constraint). Computed once, after the last step. 0, 1: off.
+  std::size_t covariance_clusters = 32;
   // Hold free directions at their start value instead of letting noise move them (Zhang et al. 2016, "On
   // degeneracy of optimization-based state estimation problems"). They are reported either way.
   bool freeze_degenerate = true;
