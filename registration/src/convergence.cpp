@@ -28,6 +28,7 @@ bool ConvergenceTest::converged(const Eigen::Isometry3d& delta, const PlaneNorma
   const bool had_previous = has_previous_;
   previous_ = delta;
   has_previous_ = true;
+  creeping_ = false;
   if (!(noise_mm > 0.0) || !(plane.length_scale_mm > 0.0) || plane.count == 0) return below_floor;
   // Eq. (1): the metric N H / sigma^2 on scaled twists.
   const Matrix6d metric = static_cast<double>(plane.count) * plane.H / (noise_mm * noise_mm);
@@ -40,6 +41,7 @@ bool ConvergenceTest::converged(const Eigen::Isometry3d& delta, const PlaneNorma
     const double cosine = m_previous > 0.0 && last_m_ > 0.0 ? x.dot(metric * y) / (last_m_ * m_previous) : 0.0;
     if (cosine > kSameWay) {
       const double rho = last_m_ / m_previous;
+      creeping_ = rho < 1.0;
       still_to_come = rho < 1.0 ? last_m_ * rho / (1.0 - rho) : std::numeric_limits<double>::infinity();
     }
   }

@@ -40,6 +40,9 @@ class ConvergenceTest {
   bool converged(const Eigen::Isometry3d& delta, const PlaneNormalMatrix& plane, double noise_mm);
 
   double last_std_fraction() const { return last_m_; }  // m(x_k) of (1)
+  // The last two steps pointed the same way and the last was the shorter: a motion still under way (a creep), not
+  // a cycle among poses.
+  bool creeping() const { return creeping_; }
 
  private:
   double fraction_;
@@ -48,6 +51,7 @@ class ConvergenceTest {
   bool has_previous_ = false;
   Eigen::Isometry3d previous_ = Eigen::Isometry3d::Identity();
   double last_m_ = 0.0;
+  bool creeping_ = false;
 };
 
 }  // namespace conform::detail

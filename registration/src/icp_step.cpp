@@ -97,8 +97,14 @@ Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::v
       e.g.noalias() += w * p.residual * J;
     }
   });
-  const Eigen::MatrixXd Hb = basis.transpose() * sums.H * basis;
-  const Eigen::VectorXd gb = basis.transpose() * sums.g;
+  return solve_step(sums.H, sums.g, centre, length_scale_mm, basis);
+}
+
+Eigen::Isometry3d solve_step(const Matrix6d& H, const Vector6d& g, const Eigen::Vector3d& centre,
+                             double length_scale_mm, const Eigen::MatrixXd& basis) {
+  if (basis.cols() == 0 || !(length_scale_mm > 0.0)) return Eigen::Isometry3d::Identity();
+  const Eigen::MatrixXd Hb = basis.transpose() * H * basis;
+  const Eigen::VectorXd gb = basis.transpose() * g;
   const Eigen::VectorXd y = Hb.ldlt().solve(-gb);
   if (!y.allFinite()) return Eigen::Isometry3d::Identity();
   return twist_motion(basis * y, centre, length_scale_mm);

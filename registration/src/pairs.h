@@ -48,7 +48,8 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
 
 // Robust weights of the inliers' residuals and the scale used (0 for kNone): scale = max(1.4826 median |r|, floor).
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
-                                   RobustKernel kernel, double min_scale_mm, double* scale_mm);
+                                   RobustKernel kernel, double min_scale_mm, double* scale_mm,
+                                   double widen_to_mm = 0.0);
 
 // The inliers' noise: 1.4826 median |r|, the standard deviation of Gaussian residuals, robust to up to half of them
 // being outliers; at least min_scale_mm (0 without inliers). along_normal: of n . (q - target) instead of the
