@@ -34,6 +34,11 @@ constexpr double kCoarseStdScale = 4.0;
 // noise the kernel is the residuals' own (the same fixed point). Not while the steps cycle: widening there fed
 // larger steps back (a noise-free plate wandered off its pose).
 constexpr double kCreepKernelScale = 2.0;
+// ... and while it creeps, the step is taken 1 / (1 - rho) times over (rho: how much the last step shrank, the
+// geometric series' sum: where the creep would end), at most this many times: the creep's remaining motion in one
+// step (fine pair: 25 -> 17 steps, the same pose within 0.001 mm). An overshoot shows as the next step turning
+// back, which is not a creep; convergence.h judges the step after a jump with the rate measured before it.
+constexpr double kMaxJump = 3.0;
 // Plane-to-plane: the scan's normals from this many neighbours, as the reference cloud's (icp_reference.cpp).
 constexpr int kScanNormalNeighbours = 16;
 
@@ -187,7 +192,6 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
                                         f.plane.length_scale_mm, basis, options.gicp_epsilon);
     }
     const Eigen::Vector3d centre = f.plane.centre;
-    result.T_ref_scan = delta * result.T_ref_scan;
     ++result.iterations;
     result.last_rotation_rad = rotation_angle(delta);
     result.last_translation_mm = (delta * centre - centre).norm();
@@ -196,6 +200,12 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
                          ? result.last_translation_mm + result.last_rotation_rad * f.plane.length_scale_mm
                          : 0.0;
     result.last_step_std = convergence.last_std_fraction();
+    const double jump = converged ? 1.0 : convergence.jump_factor(kMaxJump);
+    if (jump > 1.0) {
+      delta = detail::scaled_motion(delta, centre, jump);
+      convergence.jumped();
+    }
+    result.T_ref_scan = delta * result.T_ref_scan;
     if (converged) {
       record(pairs, f, points.size(), options, pass, result);  // the figures at the pose this step started from
       result.converged = true;
