@@ -29,6 +29,13 @@ struct StepSums {
   double rms_mm = 0.0;            // sqrt(mean r^2)
 };
 
+// [a]x: the matrix of the cross product, [a]x b = a x b.
+inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+  return m;
+}
+
 namespace step_sums_detail {
 
 // Symmetric 6x6 sums as their 21 upper-triangle entries: half the work of the full products.
@@ -68,12 +75,6 @@ inline Matrix6d symmetric(const Upper& u) {
   return m;
 }
 
-inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
-
 }  // namespace step_sums_detail
 
 // item(k, q, n, r, w) for k in [0, n): sets the k-th pair's scan point q (reference frame), reference normal n,
@@ -109,7 +110,7 @@ StepSums step_sums(std::size_t n, const Eigen::Vector3d& origin, Item&& item) {
   const double inv_length = L > 0.0 ? 1.0 / L : 0.0;
   Matrix6d A = Matrix6d::Identity();
   A.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * inv_length;
-  A.topRightCorner<3, 3>() = step_sums_detail::cross_matrix(-offset) * inv_length;
+  A.topRightCorner<3, 3>() = cross_matrix(-offset) * inv_length;
   using step_sums_detail::symmetric;
   out.plane.H = A * symmetric(m.S) * A.transpose() / count;
   out.H = A * symmetric(m.S - m.down) * A.transpose();
