@@ -212,7 +212,7 @@ AlignResult run_align(const AlignOptions& options) {
   // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
   if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;
   result.icp = icp(scan, reference, result.T_start, fine);
-  result.verdict = detail::judge_alignment(scan, reference_mesh, options, result);
+  result.verdict = detail::judge_alignment(scan, reference, options, result);
   if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
   if (options.keep_geometry) {
     result.scan = scan_mesh;

@@ -66,20 +66,21 @@ LooseMotion loosest(const DegeneracyReport& degeneracy) {
   return m;
 }
 
-double noise_of(const std::vector<Eigen::Vector3d>& points) {
+SurfaceNoiseOptions noise_options() {
   SurfaceNoiseOptions o;
   o.samples = kNoiseSamples;
-  return estimate_surface_noise(points, o);
+  return o;
 }
 
 }  // namespace
 
-AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mesh& reference,
+AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
                              const AlignOptions& options, const AlignResult& result) {
   const IcpResult& icp = result.icp;
   AlignVerdict v;
-  v.scan_noise_mm = noise_of(scan);
-  v.reference_noise_mm = reference.has_faces() ? 0.0 : noise_of(reference.vertices);
+  v.scan_noise_mm = estimate_surface_noise(scan, noise_options());
+  v.reference_noise_mm =
+      reference.has_surface() ? 0.0 : estimate_surface_noise(reference.points(), reference.tree(), noise_options());
   v.expected_noise_mm = std::hypot(v.scan_noise_mm, v.reference_noise_mm);
   v.fit_noise_mm = icp.degeneracy.noise_mm;
   // The ICP noise floor (1 um) keeps a noise-free pair from dividing by zero.

@@ -8,11 +8,13 @@
 
 #include "conform/core/mesh.h"
 #include "conform/pipelines/align.h"
+#include "conform/registration/icp_reference.h"
 
 namespace conform::detail {
 
-// scan: the points ICP used (scan frame); reference: as prepared (a cloud when it has no faces).
-AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mesh& reference,
+// scan: the points ICP used (scan frame); reference: as prepared for ICP (a cloud's noise is estimated over its
+// kd-tree, not a second one).
+AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
                              const AlignOptions& options, const AlignResult& result);
 
 }  // namespace conform::detail

@@ -17,12 +17,18 @@
 // among a few poses a fraction of a std apart: the pose is then known to that fraction, which is what converged
 // means). The absolute tolerances are the numerical floor of a noise-free fit (its sigma is the kernel's 1 um floor).
 
+#include <algorithm>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "conform/registration/degeneracy.h"
 
 namespace conform::detail {
+
+// The rigid motion `delta` taken `factor` times over, about `centre`: its rotation angle and its displacement of
+// `centre` scaled.
+Eigen::Isometry3d scaled_motion(const Eigen::Isometry3d& delta, const Eigen::Vector3d& centre, double factor);
 
 // The scaled twist (rotation vector x L, displacement of `centre`) of a rigid motion, about `centre`.
 Vector6d scaled_twist(const Eigen::Isometry3d& delta, const Eigen::Vector3d& centre, double length_scale_mm);
@@ -40,6 +46,14 @@ class ConvergenceTest {
   bool converged(const Eigen::Isometry3d& delta, const PlaneNormalMatrix& plane, double noise_mm);
 
   double last_std_fraction() const { return last_m_; }  // m(x_k) of (1)
+  // The last two steps pointed the same way and the last was the shorter: a motion still under way (a creep), not
+  // a cycle among poses.
+  bool creeping() const { return creeping_; }
+  // When creeping: how many times the last step to take instead, 1 / (1 - rho) (the geometric series' sum), at most
+  // `cap`; 1 otherwise. The next converged() then judges the step after the jump with the rate measured before it
+  // (the jump shortens that step more than the rate does, which would understate the motion still to come).
+  double jump_factor(double cap) const { return creeping_ ? std::min(cap, 1.0 / (1.0 - rho_)) : 1.0; }
+  void jumped() { jumped_rho_ = rho_; }
 
  private:
   double fraction_;
@@ -48,6 +62,9 @@ class ConvergenceTest {
   bool has_previous_ = false;
   Eigen::Isometry3d previous_ = Eigen::Isometry3d::Identity();
   double last_m_ = 0.0;
+  bool creeping_ = false;
+  double rho_ = 0.0;          // m(x_k) / m(x_{k-1}) when creeping
+  double jumped_rho_ = -1.0;  // the rate at the last jump, until the next step is judged; < 0: none
 };
 
 }  // namespace conform::detail

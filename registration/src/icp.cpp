@@ -12,6 +12,7 @@
 #include "icp_step.h"
 #include "pairs.h"
 #include "plane_matrix.h"
+#include "step_sums.h"
 
 namespace conform {
 
@@ -25,6 +26,19 @@ constexpr double kCoarseToleranceScale = 100.0;
 // ... and at this many times the convergence fraction of its own predicted std (convergence.h): the subset's
 // optimum is about one of its std from the full set's.
 constexpr double kCoarseStdScale = 4.0;
+// While ICP creeps (its last two steps point the same way, the last the shorter: convergence.h), residuals of the
+// step's size are the pose's error still to be taken out, not outliers: the robust kernel's scale is then at least
+// this many times how far the last step moved the scan (its rotation x L plus its translation). Down-weighting them
+// slowed a weakly constrained direction to a creep (the fine pair of issue 13: 19 subset steps, each ~0.7 of the
+// last; 10 with this floor). Gross outliers, beyond a step, are still down-weighted; once the steps fall below the
+// noise the kernel is the residuals' own (the same fixed point). Not while the steps cycle: widening there fed
+// larger steps back (a noise-free plate wandered off its pose).
+constexpr double kCreepKernelScale = 2.0;
+// ... and while it creeps, the step is taken 1 / (1 - rho) times over (rho: how much the last step shrank, the
+// geometric series' sum: where the creep would end), at most this many times: the creep's remaining motion in one
+// step (fine pair: 25 -> 17 steps, the same pose within 0.001 mm). An overshoot shows as the next step turning
+// back, which is not a creep; convergence.h judges the step after a jump with the rate measured before it.
+constexpr double kMaxJump = 3.0;
 // Plane-to-plane: the scan's normals from this many neighbours, as the reference cloud's (icp_reference.cpp).
 constexpr int kScanNormalNeighbours = 16;
 
@@ -41,7 +55,12 @@ struct StepFigures {
   double kernel_scale_mm = 0.0;
   PlaneNormalMatrix plane;
   double noise_mm = 0.0;
+  double rms_mm = 0.0;
   DegeneracyReport degeneracy;  // what the step holds: with the hold noise
+  // Point-to-plane and point-to-surface: the step's normal equations, from the same pass as `plane` (step_sums.h).
+  bool has_equations = false;
+  Matrix6d H = Matrix6d::Zero();
+  Vector6d g = Vector6d::Zero();
 };
 
 // One run of ICP's iterations: hold_noise_mm decides what is held (degeneracy.h); `held` is how many directions the
@@ -51,17 +70,52 @@ struct Pass {
   std::size_t held = 0;
 };
 
-StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, double hold_noise_mm) {
+Eigen::Vector3d mean_point(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) sum += p;
+  return points.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(points.size()));
+}
+
+// The k-th inlier for step_sums.h.
+auto pair_item(const std::vector<Pair>& pairs, const StepFigures& f) {
+  return [&pairs, &f](std::size_t k, Eigen::Vector3d& q, Eigen::Vector3d& n, double& r, double& w) {
+    const Pair& p = pairs[f.inliers[k]];
+    q = p.q;
+    n = p.normal;
+    r = p.residual;  // n . (q - target)
+    w = f.weights.empty() ? 1.0 : f.weights[k];
+  };
+}
+
+bool along_the_normal(IcpMethod method) {
+  return method == IcpMethod::kPointToPlane || method == IcpMethod::kPointToSurface;
+}
+
+// origin: a point near the pairs (the sums' origin, step_sums.h); widen_kernel_to_mm: the kernel's scale at least
+// this (kCreepKernelScale).
+StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, double hold_noise_mm,
+                     const Eigen::Vector3d& origin, double widen_kernel_to_mm = 0.0) {
   StepFigures f;
   f.inliers = detail::select_inliers(pairs, options.overlap);
-  f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm);
-  f.plane = detail::plane_normal_matrix_of(
-      f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
-      [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; },
-      [&](std::size_t k) {
-        const Pair& p = pairs[f.inliers[k]];
-        return p.normal.dot(p.q - p.target);
-      });
+  f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm,
+                                     widen_kernel_to_mm);
+  if (along_the_normal(options.method)) {
+    const detail::StepSums sums = detail::step_sums(f.inliers.size(), origin, pair_item(pairs, f));
+    f.plane = sums.plane;
+    f.rms_mm = sums.rms_mm;
+    f.H = sums.H;
+    f.g = sums.g;
+    f.has_equations = true;
+  } else {
+    f.plane = detail::plane_normal_matrix_of(
+        f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
+        [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].normal; },
+        [&](std::size_t k) {
+          const Pair& p = pairs[f.inliers[k]];
+          return p.normal.dot(p.q - p.target);
+        });
+    f.rms_mm = detail::inlier_rms(pairs, f.inliers);
+  }
   // The constraint is the point-to-plane one (degeneracy.h) for every method, and so is the noise that scales it.
   const bool along_normal = options.method == IcpMethod::kPointToPoint;
   f.noise_mm = f.kernel_scale_mm > 0.0 && !along_normal
@@ -74,13 +128,16 @@ StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, 
 }
 
 // The report is the constraint at the residuals' own noise, whatever the step held.
+// Called when a pass of iterations ends: only the last step's figures are reported.
 void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t scan_size, const IcpOptions& options,
             Pass& pass, IcpResult& result) {
-  result.rms_mm = detail::inlier_rms(pairs, f.inliers);
+  result.rms_mm = f.rms_mm;
   result.inliers = f.inliers.size();
   result.inlier_fraction = static_cast<double>(f.inliers.size()) / static_cast<double>(scan_size);
   result.kernel_scale_mm = f.kernel_scale_mm;
-  result.degeneracy = analyze_constraint(f.plane, f.noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
+  PlaneNormalMatrix plane = f.plane;
+  if (f.has_equations) plane.residual_moment = detail::residual_moment_of(f.inliers.size(), plane, pair_item(pairs, f));
+  result.degeneracy = analyze_constraint(plane, f.noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
                                          options.free_dof, options.free_relative_eigenvalue, options.start_std_mm,
                                          options.start_std_rad);
   pass.held = f.degeneracy.degenerate_basis.size();
@@ -129,10 +186,13 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
       tolerance_scale * options.rotation_tolerance_rad, tolerance_scale * options.translation_tolerance_mm);
   detail::PairCache cache;  // the last step's searches, reused where exact: late steps search almost nothing
   cache.reset(points.size(), options.method == IcpMethod::kPointToSurface);
+  const Eigen::Vector3d scan_centre = mean_point(points);  // the step sums' origin, moved with the scan
+  double last_motion_mm = 0.0;  // how far the last step moved the scan (at most), mm: the kernel's floor
   while (result.iterations < max_iterations) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
     detail::find_pairs(points, normals, result.T_ref_scan, reference, rules, pairs, &cache);
-    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
+    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm, result.T_ref_scan * scan_centre,
+                                   kCreepKernelScale * last_motion_mm);
     if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) {
       result.termination = IcpTermination::kTooFewCorrespondences;
       record(pairs, f, points.size(), options, pass, result);
@@ -142,20 +202,31 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
     Eigen::Isometry3d delta;
     if (point_to_point && options.free_dof.all() && !frozen) {
       delta = detail::horn_step(pairs, f.inliers, f.weights);
+    } else if (f.has_equations) {
+      const Eigen::MatrixXd basis = detail::allowed_basis(options.free_dof, f.degeneracy, options.freeze_degenerate);
+      delta = detail::solve_step(f.H, f.g, f.plane.centre, f.plane.length_scale_mm, basis);
     } else {
       const Eigen::MatrixXd basis = detail::allowed_basis(options.free_dof, f.degeneracy, options.freeze_degenerate);
       delta = detail::gauss_newton_step(pairs, f.inliers, f.weights, options.method, f.plane.centre,
                                         f.plane.length_scale_mm, basis, options.gicp_epsilon);
     }
     const Eigen::Vector3d centre = f.plane.centre;
-    record(pairs, f, points.size(), options, pass, result);
-    result.T_ref_scan = delta * result.T_ref_scan;
     ++result.iterations;
     result.last_rotation_rad = rotation_angle(delta);
     result.last_translation_mm = (delta * centre - centre).norm();
     const bool converged = convergence.converged(delta, f.plane, f.noise_mm);  // convergence.h, Eq. (2)
+    last_motion_mm = convergence.creeping()
+                         ? result.last_translation_mm + result.last_rotation_rad * f.plane.length_scale_mm
+                         : 0.0;
     result.last_step_std = convergence.last_std_fraction();
+    const double jump = converged ? 1.0 : convergence.jump_factor(kMaxJump);
+    if (jump > 1.0) {
+      delta = detail::scaled_motion(delta, centre, jump);
+      convergence.jumped();
+    }
+    result.T_ref_scan = delta * result.T_ref_scan;
     if (converged) {
+      record(pairs, f, points.size(), options, pass, result);  // the figures at the pose this step started from
       result.converged = true;
       result.termination = IcpTermination::kConverged;
       return;
@@ -187,7 +258,8 @@ IcpResult run_pass(const ScanData& scan, const IcpReference& reference, const Ei
     // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
     result.termination = IcpTermination::kMaxIterations;
     detail::find_pairs(scan.points, scan.normals, result.T_ref_scan, reference, rules, pairs);
-    record(pairs, evaluate(pairs, options, pass.hold_noise_mm), scan.points.size(), options, pass, result);
+    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm, result.T_ref_scan * mean_point(scan.points));
+    record(pairs, f, scan.points.size(), options, pass, result);
   }
   record_final(pairs, scan.points.size(), options, pass, result);
   if (result.converged && result.inlier_fraction < options.min_inlier_fraction) {

@@ -6,6 +6,7 @@
 #include "block_sum.h"
 #include "conform/registration/horn.h"
 #include "gicp.h"
+#include "step_sums.h"
 
 namespace conform::detail {
 
@@ -20,12 +21,6 @@ struct NormalEquations {
     return *this;
   }
 };
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 // The rigid motion p -> R(w) (p - c) + c + v of the scaled twist x = (w L, v).
 Eigen::Isometry3d twist_motion(const Vector6d& x, const Eigen::Vector3d& c, double length_scale_mm) {
@@ -77,7 +72,7 @@ Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::v
       // r = q - target; dq/d(w L, v) = [-[a]x, I] (Besl & McKay's objective, linearised). Plane-to-plane weights it
       // by the inverse of the summed covariances, Eq. (2) of Segal et al. 2009, held fixed during the step.
       Eigen::Matrix<double, 3, 6> J;
-      J.leftCols<3>() = -skew(a);
+      J.leftCols<3>() = -cross_matrix(a);
       J.rightCols<3>() = Eigen::Matrix3d::Identity();
       if (method == IcpMethod::kPlaneToPlane) {
         const Eigen::Matrix3d omega = plane_to_plane_information(p.normal, p.scan_normal, gicp_epsilon);
@@ -97,8 +92,14 @@ Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::v
       e.g.noalias() += w * p.residual * J;
     }
   });
-  const Eigen::MatrixXd Hb = basis.transpose() * sums.H * basis;
-  const Eigen::VectorXd gb = basis.transpose() * sums.g;
+  return solve_step(sums.H, sums.g, centre, length_scale_mm, basis);
+}
+
+Eigen::Isometry3d solve_step(const Matrix6d& H, const Vector6d& g, const Eigen::Vector3d& centre,
+                             double length_scale_mm, const Eigen::MatrixXd& basis) {
+  if (basis.cols() == 0 || !(length_scale_mm > 0.0)) return Eigen::Isometry3d::Identity();
+  const Eigen::MatrixXd Hb = basis.transpose() * H * basis;
+  const Eigen::VectorXd gb = basis.transpose() * g;
   const Eigen::VectorXd y = Hb.ldlt().solve(-gb);
   if (!y.allFinite()) return Eigen::Isometry3d::Identity();
   return twist_motion(basis * y, centre, length_scale_mm);

@@ -28,4 +28,9 @@ Eigen::Isometry3d gauss_newton_step(const std::vector<Pair>& pairs, const std::v
                                     const std::vector<double>& weights, IcpMethod method, const Eigen::Vector3d& centre,
                                     double length_scale_mm, const Eigen::MatrixXd& basis, double gicp_epsilon = 1e-3);
 
+// The step minimising the linearised objective with normal equations H y = -g (scaled twists about `centre`, length
+// scale L), within span(basis).
+Eigen::Isometry3d solve_step(const Matrix6d& H, const Vector6d& g, const Eigen::Vector3d& centre,
+                             double length_scale_mm, const Eigen::MatrixXd& basis);
+
 }  // namespace conform::detail

@@ -87,20 +87,27 @@ void find_pairs(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eige
 }
 
 std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap) {
+  // Chetverikov et al. 2002: keep the ceil(overlap N) smallest distances of the N scan points.
+  const auto keep = static_cast<std::size_t>(std::ceil(overlap * static_cast<double>(pairs.size())));
+  if (keep == 0) return {};
+  std::vector<std::size_t> inliers;
+  if (keep >= pairs.size()) {  // no trimming: every pair found
+    inliers.reserve(pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (pairs[i].found) inliers.push_back(i);
+    }
+    return inliers;
+  }
   std::vector<double> distances;
   distances.reserve(pairs.size());
   for (const Pair& p : pairs) {
     if (p.found) distances.push_back(p.distance);
   }
-  // Chetverikov et al. 2002: keep the ceil(overlap N) smallest distances of the N scan points.
-  const auto keep = static_cast<std::size_t>(std::ceil(overlap * static_cast<double>(pairs.size())));
   double limit = std::numeric_limits<double>::infinity();
-  if (keep == 0) return {};
   if (distances.size() > keep) {
     std::nth_element(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(keep - 1), distances.end());
     limit = distances[keep - 1];
   }
-  std::vector<std::size_t> inliers;
   inliers.reserve(std::min(keep, distances.size()));
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (pairs[i].found && pairs[i].distance <= limit) inliers.push_back(i);
@@ -109,12 +116,12 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
 }
 
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
-                                   RobustKernel kernel, double min_scale_mm, double* scale_mm) {
+                                   RobustKernel kernel, double min_scale_mm, double* scale_mm, double widen_to_mm) {
   std::vector<double> weights(inliers.size(), 1.0);
   *scale_mm = 0.0;
   if (kernel == RobustKernel::kNone || inliers.empty()) return weights;
-  const double scale = noise_scale(pairs, inliers, min_scale_mm);
-  *scale_mm = scale;
+  *scale_mm = noise_scale(pairs, inliers, min_scale_mm);
+  const double scale = std::max(*scale_mm, widen_to_mm);
   const double huber = 1.345 * scale, tukey = 4.685 * scale;
   for (std::size_t k = 0; k < inliers.size(); ++k) {
     const double r = std::abs(pairs[inliers[k]].residual);

@@ -46,9 +46,11 @@ void find_pairs(const std::vector<Eigen::Vector3d>& scan, const std::vector<Eige
 // The found pairs kept after trimming to `overlap` x scan size (smallest distances first), ascending by index.
 std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double overlap);
 
-// Robust weights of the inliers' residuals and the scale used (0 for kNone): scale = max(1.4826 median |r|, floor).
+// Robust weights of the inliers' residuals and their scale (0 for kNone): scale = max(1.4826 median |r|, floor).
+// The weights use max(scale, widen_to_mm): ICP widens the kernel while it creeps (icp.cpp, kCreepKernelScale).
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
-                                   RobustKernel kernel, double min_scale_mm, double* scale_mm);
+                                   RobustKernel kernel, double min_scale_mm, double* scale_mm,
+                                   double widen_to_mm = 0.0);
 
 // The inliers' noise: 1.4826 median |r|, the standard deviation of Gaussian residuals, robust to up to half of them
 // being outliers; at least min_scale_mm (0 without inliers). along_normal: of n . (q - target) instead of the

@@ -246,6 +246,45 @@ TEST(IcpConvergence, SteadyCreepIsNotConvergedAndACycleIs) {
   EXPECT_TRUE(cycle.converged(shift_x(-0.02), plane, 1.0));
 }
 
+// A creep (steps the same way, shrinking) is to be jumped by the geometric series' sum 1 / (1 - rho), capped; a
+// cycle or a growing step is not. The step after a jump is judged with the rate measured before it.
+TEST(IcpConvergence, ACreepIsJumpedByTheSumOfItsSeries) {
+  PlaneNormalMatrix plane;
+  detail::ConvergenceTest creep = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(creep.converged(shift_x(0.04), plane, 1.0));
+  EXPECT_EQ(creep.jump_factor(3.0), 1.0);  // one step: no rate yet
+  EXPECT_FALSE(creep.converged(shift_x(0.03), plane, 1.0));
+  EXPECT_TRUE(creep.creeping());
+  EXPECT_NEAR(creep.jump_factor(10.0), 4.0, 1e-9);  // rho 0.75
+  EXPECT_NEAR(creep.jump_factor(3.0), 3.0, 1e-12);
+  creep.jumped();
+  // After the jump a step of 0.008 (m = 0.08) is judged with rho 0.75: 0.08 + 0.24 still to come, not converged
+  // (its ratio to the step before, 0.27, would say 0.08 + 0.03: converged).
+  EXPECT_FALSE(creep.converged(shift_x(0.008), plane, 1.0));
+  EXPECT_FALSE(creep.creeping());
+  detail::ConvergenceTest cycle = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(cycle.converged(shift_x(0.04), plane, 1.0));
+  EXPECT_FALSE(cycle.converged(shift_x(-0.03), plane, 1.0));
+  EXPECT_EQ(cycle.jump_factor(3.0), 1.0);
+  detail::ConvergenceTest growing = convergence_on_unit_matrix(plane);
+  EXPECT_FALSE(growing.converged(shift_x(0.03), plane, 1.0));
+  EXPECT_FALSE(growing.converged(shift_x(0.04), plane, 1.0));
+  EXPECT_EQ(growing.jump_factor(3.0), 1.0);
+}
+
+TEST(IcpConvergence, AScaledMotionTurnsAndMovesItsCentreThatManyTimesOver) {
+  Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+  delta.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  delta.translation() = Eigen::Vector3d(0.3, -0.2, 0.1);
+  const Eigen::Vector3d centre(40.0, -10.0, 5.0);
+  EXPECT_TRUE(detail::scaled_motion(delta, centre, 1.0).isApprox(delta, 1e-12));
+  const Eigen::Isometry3d triple = detail::scaled_motion(delta, centre, 3.0);
+  EXPECT_NEAR(rotation_angle(triple), 0.03, 1e-12);
+  EXPECT_LT(((triple * centre - centre) - 3.0 * (delta * centre - centre)).norm(), 1e-12);
+  // About its centre, a twist taken three times is the same axis.
+  EXPECT_LT((Eigen::AngleAxisd(triple.linear()).axis() - Eigen::Vector3d(1, 2, 3).normalized()).norm(), 1e-9);
+}
+
 TEST(IcpConvergence, TheTolerancesAreTheFloorOfANoiseFreeFit) {
   PlaneNormalMatrix plane;
   plane.H = Matrix6d::Identity();

@@ -36,7 +36,9 @@ struct IcpResult {
   double rms_mm = 0.0;
   std::size_t inliers = 0;           // pairs within the maximum distance that survived trimming
   double inlier_fraction = 0.0;      // inliers / scan points
-  double kernel_scale_mm = 0.0;      // the robust kernel's scale in the last step (0 without a kernel)
+  // The robust kernel's scale in the last step, 1.4826 median |r| (0 without a kernel); while ICP creeps its kernel
+  // is wider (twice the last step's motion, docs/align.md), which a converged last step never is.
+  double kernel_scale_mm = 0.0;
   double last_rotation_rad = 0.0;    // the last step's rotation
   double last_translation_mm = 0.0;  // the last step's displacement of the scan's centroid
   // The last step in units of the pose's predicted std (its Mahalanobis length, convergence.h Eq. (1)); converged
