@@ -149,7 +149,9 @@ void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t sc
 void record_final(const std::vector<Pair>& pairs, std::size_t scan_size, const IcpOptions& options, Pass& pass,
                   IcpResult& result) {
   if (options.covariance_clusters < 2 || pairs.empty()) return;
-  StepFigures f = evaluate(pairs, options, pass.hold_noise_mm);
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // the step sums' origin: any point near the pairs
+  for (const Pair& p : pairs) origin += p.q;
+  StepFigures f = evaluate(pairs, options, pass.hold_noise_mm, origin / static_cast<double>(pairs.size()));
   if (f.inliers.size() < options.min_correspondences || !(f.plane.length_scale_mm > 0.0)) return;
   detail::add_cluster_moment(
       f.inliers.size(), [&](std::size_t k) -> const Eigen::Vector3d& { return pairs[f.inliers[k]].q; },
