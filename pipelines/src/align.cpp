@@ -204,6 +204,8 @@ AlignResult run_align(const AlignOptions& options) {
   report(options.progress, "normals", 0.0);
   const IcpReference reference(reference_mesh);
   report(options.progress, "normals", 1.0);
+  // Fine point-to-surface ICP needs the triangle index: built beside the coarse stage, which is mostly serial.
+  if (result.method == IcpMethod::kPointToSurface && options.init != AlignInit::kNone) reference.prepare_surface();
   result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
                                                          : kAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, options, result.max_distance_mm, result);
