@@ -91,7 +91,8 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Mes
                              const AlignOptions& options, const AlignResult& result) {
   const IcpResult& icp = result.icp;
   AlignVerdict v;
-  v.scan_noise_mm = noise_of(scan);
+  // The coarse stage estimated the same figure on the same points (coarse.cpp: 2000 samples): not twice.
+  v.scan_noise_mm = result.coarse.scan_noise_mm > 0.0 ? result.coarse.scan_noise_mm : noise_of(scan);
   v.reference_noise_mm = reference.has_faces() ? 0.0 : noise_of(reference.vertices);
   v.expected_noise_mm = std::hypot(v.scan_noise_mm, v.reference_noise_mm);
   v.fit_noise_mm = icp.degeneracy.noise_mm;

@@ -226,7 +226,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   // Each side's result is the same either way; the scan's error, if both fail, is the one reported, as before.
   Described s, r;
   std::exception_ptr failed[2];
-#pragma omp parallel sections num_threads(2)
+#pragma omp parallel sections
   {
 #pragma omp section
     {
