@@ -98,10 +98,6 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
                 " vertices");
   }
   const std::vector<Eigen::Vector3d> face_normals = scaled_face_normals(mesh);
-  std::vector<std::array<double, 3>> angles(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) angles[f][static_cast<std::size_t>(k)] = corner_angle(mesh, mesh.faces[f], k);
-  }
   normals_ = vertex_normals;
   for (Eigen::Vector3d& v : normals_) v = unit_or_zero(v);
   if (normals_.empty()) {
@@ -110,7 +106,7 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
       const Eigen::Vector3d u = unit_or_zero(face_normals[f]);
       for (int k = 0; k < 3; ++k) {
         normals_[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])] +=
-            angles[f][static_cast<std::size_t>(k)] * u;
+            corner_angle(mesh, mesh.faces[f], k) * u;
       }
     }
     for (Eigen::Vector3d& v : normals_) v = unit_or_zero(v);
@@ -148,7 +144,7 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
         if (other.dot(own) < crease_cosine) continue;
         const Face& gf = mesh.faces[g];
         const int corner = gf[0] == v ? 0 : gf[1] == v ? 1 : 2;
-        sum += angles[g][static_cast<std::size_t>(corner)] * other;
+        sum += corner_angle(mesh, gf, corner) * other;
       }
       corners_[f][static_cast<std::size_t>(k)] = static_cast<std::int32_t>(normals_.size());
       normals_.push_back(unit_or_zero(sum));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -18,7 +19,12 @@
 
 namespace conform {
 
-struct TriangleIndex::Impl : detail::TriangleTree {};
+// The pseudo-normals only give signs (normal_at): built on first use from the mesh kept here, so that point-to-surface
+// ICP, which measures along its own smooth normals, does not pay for them (a third of the index's build time).
+struct TriangleIndex::Impl : detail::TriangleTree {
+  Mesh source;
+  std::once_flag normals_once;
+};
 
 namespace {
 
@@ -74,7 +80,8 @@ void check_mesh(const Mesh& mesh) {
 
 TriangleIndex::TriangleIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
   check_mesh(mesh);
-  detail::build_pseudo_normals(mesh, *impl_);
+  impl_->source = mesh;
+  impl_->faces = mesh.faces;
   detail::build_tree(mesh, *impl_);
 }
 
@@ -190,6 +197,7 @@ Eigen::Vector3d TriangleIndex::normal_at(const SurfacePoint& point) const {
     throw Error("triangle index: face " + std::to_string(point.face) + " is not one of its " +
                 std::to_string(impl_->faces.size()) + " faces");
   }
+  std::call_once(impl_->normals_once, [this] { detail::build_pseudo_normals(impl_->source, *impl_); });
   const auto offset = [&](TriangleFeature first) {
     return static_cast<std::size_t>(static_cast<int>(point.feature) - static_cast<int>(first));
   };

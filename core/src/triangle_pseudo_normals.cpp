@@ -64,7 +64,6 @@ void vertex_normals(TriangleTree& tree, const Mesh& mesh) {
 }  // namespace
 
 void build_pseudo_normals(const Mesh& mesh, TriangleTree& tree) {
-  tree.faces = mesh.faces;
   tree.face_normals.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) tree.face_normals[f] = face_normal(mesh, f);
   edge_normals(tree);

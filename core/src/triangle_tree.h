@@ -35,6 +35,7 @@ struct TriangleTree {
   std::vector<Triangle> triangles;  // in leaf order
 
   std::vector<Face> faces;
+  // The pseudo-normals (build_pseudo_normals), made on the first TriangleIndex::normal_at.
   std::vector<Eigen::Vector3d> face_normals;    // unit, zero for a face without area
   std::vector<Eigen::Vector3d> edge_normals;    // 3 per face (edges 01, 12, 20), unit or zero
   std::vector<Eigen::Vector3d> vertex_normals;  // per mesh vertex, unit or zero
@@ -46,7 +47,7 @@ inline constexpr int kMaxTreeDepth = 96;
 
 // nodes, triangles and the root from the mesh's faces (checked: indices in range, vertices finite).
 void build_tree(const Mesh& mesh, TriangleTree& tree);
-// faces, face_normals, edge_normals and vertex_normals.
+// face_normals, edge_normals and vertex_normals of `mesh` (whose faces are tree.faces).
 void build_pseudo_normals(const Mesh& mesh, TriangleTree& tree);
 
 }  // namespace conform::detail

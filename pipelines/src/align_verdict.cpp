@@ -72,13 +72,28 @@ SurfaceNoiseOptions noise_options() {
   return o;
 }
 
+Eigen::Vector3d scan_centre(const std::vector<Eigen::Vector3d>& scan) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : scan) sum += p;
+  return scan.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(scan.size()));
+}
+
+// "12.3 deg and 4.56 mm away": the turn between two starts' poses and how far the scan's centre lies apart at them
+// (a start shifted by a rib's pitch is 0.0 deg away, yet elsewhere).
+std::string how_far(const StartReport& best, const StartReport& other, const Eigen::Vector3d& centre) {
+  return format("%.1f deg and %.3g mm away", rotation_angle(other.T_probe * best.T_probe.inverse()) * 180.0 / M_PI,
+                (other.T_probe * centre - best.T_probe * centre).norm());
+}
+
 }  // namespace
 
 AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
                              const AlignOptions& options, const AlignResult& result) {
   const IcpResult& icp = result.icp;
   AlignVerdict v;
-  v.scan_noise_mm = estimate_surface_noise(scan, noise_options());
+  // The coarse stage estimated the same figure on the same points (coarse.cpp: 2000 samples): not twice.
+  v.scan_noise_mm = result.coarse.scan_noise_mm > 0.0 ? result.coarse.scan_noise_mm
+                                                      : estimate_surface_noise(scan, noise_options());
   v.reference_noise_mm =
       reference.has_surface() ? 0.0 : estimate_surface_noise(reference.points(), reference.tree(), noise_options());
   v.expected_noise_mm = std::hypot(v.scan_noise_mm, v.reference_noise_mm);
@@ -89,27 +104,28 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   std::vector<std::string> no, check;
   if (!icp.converged) no.push_back(std::string("ICP did not converge (") + to_string(icp.termination) + ")");
   const MultiStartResult& ranking = result.coarse.ranking;
+  const Eigen::Vector3d centre = scan_centre(scan);
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
-    const double apart = rotation_angle(other.T_probe * best.T_probe.inverse()) * 180.0 / M_PI;
-    no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label +
-                 format("' at a pose %.1f deg away (inlier share %.3f against %.3f, see starts)", apart,
-                        other.inlier_share, best.inlier_share) +
+    no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
+                 how_far(best, other, centre) +
+                 format(" (inlier share %.3f against %.3f, see starts)", other.inlier_share, best.inlier_share) +
                  kWhatToDo);
   }
   if (ranking.best >= 0 && result.coarse.inlier_distance_mm > 0.0) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    // Of the close starts told apart, the one that came closest.
+    const StartReport* closest = nullptr;
     for (const StartReport& other : ranking.starts) {
-      if (!other.separated) continue;
-      char told[200];
-      std::snprintf(told, sizeof told,
-                    "' fits almost as well at a pose %.1f deg away (inlier share %.3f against %.3f); only %.1f%% of "
-                    "the scan (against %.1f%%) tells them apart",
-                    rotation_angle(other.T_probe * best.T_probe.inverse()) * 180.0 / M_PI, other.inlier_share,
-                    best.inlier_share, 100.0 * other.best_only_share, 100.0 * other.only_share);
-      check.push_back("coarse start '" + other.label + told);
-      break;
+      if (other.separated && (closest == nullptr || other.inlier_share > closest->inlier_share)) closest = &other;
+    }
+    if (closest != nullptr) {
+      check.push_back("coarse start '" + closest->label + "' fits almost as well at a pose " +
+                      how_far(best, *closest, centre) +
+                      format(" (inlier share %.3f against %.3f); only %.1f%% of ", closest->inlier_share,
+                             best.inlier_share, 100.0 * closest->best_only_share) +
+                      format("the scan (against %.1f%%) tells them apart", 100.0 * closest->only_share));
     }
     if (best.inlier_share < kLowCoarseShare * options.overlap) {
       no.push_back(format("the best coarse start has only %.0f%% of the scan within %.3g mm of the reference "

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <utility>
 
 #include <pcl/features/fpfh_omp.h>
@@ -221,8 +222,32 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   const double v = result.voxel_mm;
   // Each side relative to its own first point: PCL computes in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
-  const Described s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
-  const Described r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
+  // The two sides at once, one a thread: most of describe() (voxels, outlier removal, normals) runs on one thread.
+  // Each side's result is the same either way; the scan's error, if both fail, is the one reported, as before.
+  Described s, r;
+  std::exception_ptr failed[2];
+#pragma omp parallel sections
+  {
+#pragma omp section
+    {
+      try {
+        s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
+      } catch (...) {
+        failed[0] = std::current_exception();
+      }
+    }
+#pragma omp section
+    {
+      try {
+        r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
+      } catch (...) {
+        failed[1] = std::current_exception();
+      }
+    }
+  }
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
   result.scan_points = s.points->size();
   result.reference_points = r.points->size();
 

@@ -2,8 +2,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <exception>
+#include <future>
+#include <mutex>
 #include <string>
 #include <utility>
+
+#include <omp.h>
 
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
@@ -31,8 +36,10 @@ std::vector<Eigen::Vector3d> cloud_normals(const Mesh& mesh, const KdTree& tree)
 
 }  // namespace
 
-IcpReference::IcpReference(const Mesh& reference) { build(reference); }
-IcpReference::IcpReference(const Cloud& reference) {
+IcpReference::IcpReference(const Mesh& reference) : surface_state_(std::make_unique<SurfaceState>()) {
+  build(reference);
+}
+IcpReference::IcpReference(const Cloud& reference) : surface_state_(std::make_unique<SurfaceState>()) {
   check_consistent(reference, "ICP reference");
   build(to_mesh(reference));
 }
@@ -61,7 +68,6 @@ void IcpReference::build(Mesh mesh) {
   } else {
     normals_ = cloud_normals(mesh, *tree_);
   }
-  if (mesh.has_faces()) smooth_ = smooth_vertices(mesh, normals_);
   const std::vector<std::uint32_t>& index_at = tree_->leaf_order();
   by_position_.resize(index_at.size());
   for (std::size_t p = 0; p < index_at.size(); ++p) {
@@ -71,6 +77,46 @@ void IcpReference::build(Mesh mesh) {
   faces_ = std::move(mesh.faces);
 }
 
+// The triangle index and the smooth surface: made once, by whichever comes first, prepare_surface()'s thread or the
+// first surface() call (which then waits for it: std::call_once).
+struct IcpReference::SurfaceState {
+  std::once_flag once;
+  std::unique_ptr<TriangleIndex> index;
+  std::unique_ptr<PhongSurface> phong;
+  std::future<void> pending;  // last: destroyed (joined) first
+
+  // make_mesh() is called only by the one call that builds.
+  template <typename MakeMesh>
+  void build(const MakeMesh& make_mesh, const std::vector<Eigen::Vector3d>& normals) {
+    std::call_once(once, [&] {
+      const Mesh mesh = make_mesh();
+      index = std::make_unique<TriangleIndex>(mesh);
+      // The reference's own normals at smooth vertices, so the curved surface is the one its normals describe.
+      phong = std::make_unique<PhongSurface>(mesh, normals);
+    });
+  }
+};
+
+Mesh IcpReference::surface_mesh() const {
+  Mesh mesh;
+  mesh.vertices = points_;
+  mesh.faces = faces_;
+  return mesh;
+}
+
+void IcpReference::prepare_surface() const {
+  if (faces_.empty() || omp_get_max_threads() < 2 || surface_state_->pending.valid()) return;
+  // Copies, so that the thread does not depend on this object (which may be moved meanwhile).
+  surface_state_->pending =
+      std::async(std::launch::async, [state = surface_state_.get(), mesh = surface_mesh(), normals = normals_] {
+        try {
+          state->build([&mesh]() -> const Mesh& { return mesh; }, normals);
+        } catch (const std::exception&) {
+          // surface() builds again on the caller's thread and throws there.
+        }
+      });
+}
+
 const TriangleIndex& IcpReference::surface() const {
   if (faces_.empty()) {
     throw Error(
@@ -78,20 +124,18 @@ const TriangleIndex& IcpReference::surface() const {
         "point-to-plane)");
   }
   // Only point-to-surface needs it, and building it costs more than the kd-tree.
-  std::call_once(*surface_once_, [this] {
-    Mesh mesh;
-    mesh.vertices = points_;
-    mesh.faces = faces_;
-    surface_ = std::make_unique<TriangleIndex>(mesh);
-    // The reference's own normals at smooth vertices, so the curved surface is the one its normals describe.
-    phong_ = std::make_unique<PhongSurface>(mesh, normals_);
-  });
-  return *surface_;
+  surface_state_->build([this] { return surface_mesh(); }, normals_);
+  return *surface_state_->index;
 }
 
 const PhongSurface& IcpReference::phong() const {
   surface();
-  return *phong_;
+  return *surface_state_->phong;
+}
+
+const std::vector<unsigned char>& IcpReference::smooth() const {
+  static const std::vector<unsigned char> none;
+  return faces_.empty() ? none : phong().smooth();
 }
 
 }  // namespace conform

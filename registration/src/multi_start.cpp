@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <numeric>
 #include <utility>
 
@@ -251,36 +252,63 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   MultiStartResult result;
   std::vector<std::vector<char>> masks;
   std::vector<DegeneracyReport> constraints;  // each probe's, for the best's free motions
+  struct Probe {
+    StartReport report;
+    std::vector<char> mask;
+    DegeneracyReport constraint;
+  };
   const auto probe_start = [&](const CoarseStart& start) {
     IcpOptions probe = options.probe;
     probe.progress = nullptr;
     const IcpResult r = icp(subset, reference, start.T_ref_scan, probe);
-    StartReport report;
-    report.label = start.label;
-    report.T_start = start.T_ref_scan;
-    report.T_probe = r.T_ref_scan;
-    report.score_mm = truncated_rms(subset, r.T_ref_scan, reference, cap);
-    report.inlier_fraction = r.inlier_fraction;
-    report.rms_mm = r.rms_mm;
-    constraints.push_back(r.degeneracy);
+    Probe out;
+    out.report.label = start.label;
+    out.report.T_start = start.T_ref_scan;
+    out.report.T_probe = r.T_ref_scan;
+    out.report.score_mm = truncated_rms(subset, r.T_ref_scan, reference, cap);
+    out.report.inlier_fraction = r.inlier_fraction;
+    out.report.rms_mm = r.rms_mm;
+    out.constraint = r.degeneracy;
     if (by_share) {
-      masks.push_back(inliers(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
-      report.inlier_share = share_of(masks.back());
+      out.mask = inliers(subset, r.T_ref_scan, reference, options.inlier_distance_mm, reach);
+      out.report.inlier_share = share_of(out.mask);
     }
-    result.starts.push_back(report);
-    if (result.best < 0 || better(report, result.starts[static_cast<std::size_t>(result.best)])) {
-      result.best = static_cast<int>(result.starts.size()) - 1;
+    return out;
+  };
+  // The probes are independent and each too small to share out (icp() runs a few thousand points on one thread):
+  // one start a thread, merged in the order given, so the result is the same for any number of threads.
+  const auto probe_all = [&](const std::vector<CoarseStart>& batch) {
+    std::vector<Probe> probes(batch.size());
+    std::vector<std::exception_ptr> failed(batch.size());  // an exception must not leave a parallel region
+    const auto n = static_cast<std::ptrdiff_t>(batch.size());
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      try {
+        probes[i] = probe_start(batch[i]);
+      } catch (...) {
+        failed[i] = std::current_exception();
+      }
+    }
+    for (const std::exception_ptr& e : failed) {
+      if (e) std::rethrow_exception(e);
+    }
+    for (Probe& p : probes) {
+      result.starts.push_back(p.report);
+      masks.push_back(std::move(p.mask));
+      constraints.push_back(std::move(p.constraint));
+      if (result.best < 0 || better(p.report, result.starts[static_cast<std::size_t>(result.best)])) {
+        result.best = static_cast<int>(result.starts.size()) - 1;
+      }
     }
   };
-  for (const CoarseStart& start : starts) probe_start(start);
+  probe_all(starts);
   if (options.probe_reference_symmetry) {
     // The best pose turned by the reference's own candidate symmetries: if the reference (or the part of it the scan
     // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
     // not any start happened to land there (a partial scan of a symmetric plate: every FPFH run may agree).
     const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
-    for (const CoarseStart& turned : symmetry_starts(best_given, reference.points(), options.symmetry_similarity)) {
-      probe_start(turned);
-    }
+    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
   }
   const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
   const Eigen::Vector3d centre =

@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
+#include "conform/core/error.h"
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/registration/icp.h"
 #include "test_parts.h"
@@ -105,6 +107,30 @@ TEST(FineMethod, PointToSurfaceHasNoChordBias) {
 // normals 45 deg from the ridge vertices' averaged normal) make the ridge a crease; at 10 deg it is smooth; vertices
 // with faces of one plane only are smooth. Every vertex of the 4 mm tube mesh (1.5 deg between faces) is smooth; a
 // cloud has no flags.
+// prepare_surface() builds the triangle index on another thread (with more than one OpenMP thread): surface() then
+// answers exactly as a loop over every triangle, also for a reference moved while the build ran, and a cloud has none.
+TEST(FineMethod, PreparedSurfaceAnswersAsEveryTriangle) {
+  const Mesh mesh = test::make_test_part(PartKind::kBox).reference;
+  IcpReference prepared(mesh);
+  prepared.prepare_surface();
+  const IcpReference reference = std::move(prepared);
+  for (int k = 0; k < 20; ++k) {
+    const Eigen::Vector3d q = mesh.vertices[static_cast<std::size_t>(k * 37) % mesh.vertices.size()] +
+                              Eigen::Vector3d(0.3 * k - 3.0, 0.7, -0.2 * k);
+    double best = std::numeric_limits<double>::infinity();
+    for (const Face& f : mesh.faces) {
+      best = std::min(best, closest_point_on_triangle(q, mesh.vertices[static_cast<std::size_t>(f[0])],
+                                                      mesh.vertices[static_cast<std::size_t>(f[1])],
+                                                      mesh.vertices[static_cast<std::size_t>(f[2])])
+                                .sq_distance);
+    }
+    EXPECT_EQ(reference.surface().closest(q).sq_distance, best) << k;
+  }
+  const IcpReference cloud = as_cloud(mesh);
+  cloud.prepare_surface();  // nothing to build
+  EXPECT_THROW(cloud.surface(), Error);
+}
+
 TEST(FineMethod, CreaseVertices) {
   for (double fold_deg : {90.0, 10.0}) {
     const double h = std::tan(0.5 * fold_deg * kDeg);

@@ -5,7 +5,6 @@
 // Thread-safe to query.
 
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,10 +42,15 @@ class IcpReference {
   const std::vector<Face>& faces() const { return faces_; }
   // Per vertex of a mesh: 1 when every face around it is within the crease angle of its normal and of each other (a
   // smooth surface there; core/phong_surface.h smooth_vertices), 0 at a crease or corner (a CAD edge) and for a
-  // vertex without faces. Empty for a cloud.
-  const std::vector<unsigned char>& smooth() const { return smooth_; }
-  // Builds the triangle index on the first call. Throws conform::Error when the reference has no faces.
+  // vertex without faces. Empty for a cloud. Builds the smooth surface (phong()) on the first call.
+  const std::vector<unsigned char>& smooth() const;
+  // Builds the triangle index on the first call (or waits for prepare_surface's build). Throws conform::Error when
+  // the reference has no faces.
   const TriangleIndex& surface() const;
+  // When OpenMP may use more than one thread: starts building surface() and phong() on another thread, so that the
+  // build overlaps whatever the caller does meanwhile (align's coarse stage, which is mostly serial). Nothing for a
+  // cloud, or with one thread (surface() then builds on first use, as without this call).
+  void prepare_surface() const;
   // The smooth surface over the faces (core/phong_surface.h) with these normals; built with surface(), same throws.
   const PhongSurface& phong() const;
   std::size_t size() const { return points_.size(); }
@@ -57,12 +61,11 @@ class IcpReference {
   std::vector<Eigen::Vector3d> points_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<Face> faces_;
-  std::vector<unsigned char> smooth_;
   std::vector<Sample> by_position_;
   std::unique_ptr<KdTree> tree_;
-  mutable std::unique_ptr<std::once_flag> surface_once_ = std::make_unique<std::once_flag>();
-  mutable std::unique_ptr<TriangleIndex> surface_;
-  mutable std::unique_ptr<PhongSurface> phong_;
+  struct SurfaceState;
+  Mesh surface_mesh() const;
+  std::unique_ptr<SurfaceState> surface_state_;  // last: its pending build is joined before the rest goes
 };
 
 }  // namespace conform
