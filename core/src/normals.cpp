@@ -42,8 +42,8 @@ Eigen::Vector3d unit_or(const Eigen::Vector3d& v, const Eigen::Vector3d& fallbac
 // PCA normal of the points point_at(j), j in `neighbours`, turned so that n . reference >= 0.
 // The covariance is built in two passes (mean, then centred outer products) so that a neighbourhood 1e4 mm from the
 // origin keeps full precision. The closed form (computeDirect()) is tried first and kept when the neighbourhood is
-// round (l1 >= kRound l2): there it agrees with the iterative SelfAdjointEigenSolver to 1e-15 at a fifth of the cost
-// (the solver was 15 % of the normals' time). Its eigenvalues carry an error of ~1e-9 of the largest, so it loses the
+// round (l1 >= kRound l2): there it agrees with the iterative SelfAdjointEigenSolver to 1e-15 and is cheaper (the
+// iterative solver was 15 % of the normals' time; with the closed form they take 7 % less, docs/align.md "Speed"). Its eigenvalues carry an error of ~1e-9 of the largest, so it loses the
 // smallest eigenvector of an elongated neighbourhood (a scan line, a thin strip): 4.7e-5 rad instead of 3e-11 on
 // normals_test's 1:1000 strip, and 90 degrees off at 1:10000; those are solved again iteratively. At l1 >= kRound l2
 // the closed form's error is below 1e-9 / kRound = 2e-8 rad, under the float output's resolution.
@@ -238,7 +238,9 @@ pcl::PointCloud<pcl::Normal> estimate_normals(const KdTree& tree, const NormalOp
   pcl::PointCloud<pcl::Normal> normals;
   normals.resize(count);
   const std::vector<std::uint32_t>& index_at = tree.leaf_order();
-  for (std::size_t position = 0; position < count; ++position) {
+#pragma omp parallel for schedule(static, 4096)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(count); ++i) {
+    const auto position = static_cast<std::size_t>(i);
     const std::size_t source = chosen.empty() ? position : chosen[position];
     Eigen::Vector3d n = fits[source].normal;
     if (source != position && n.dot(reference_at(tree.point_at_position(position).cast<double>())) < 0.0) n = -n;
