@@ -193,6 +193,18 @@ TEST(EstimateNormals, CylinderNormalsPointAwayFromOrTowardsTheAxis) {
   // rho ~2.4 mm against R = 30 mm, one-sided neighbourhoods at the ends (measured max 0.039, mean 0.0085).
   EXPECT_LT(error.max, 0.06);  // rad
   EXPECT_LT(error.mean(), 0.012);
+  // The flattest neighbourhood on this noise-free curved surface: a few points take a neighbour's plane, up to
+  // rho / R off (measured max 0.062, mean 0.0086).
+  options.flattest_neighbourhood = true;
+  const auto flattest = estimate_normals(cloud, options);
+  Stats flattest_error;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    Eigen::Vector3d radial = cloud.points[i].getVector3fMap().cast<double>() - axis_point;
+    radial.z() = 0.0;
+    flattest_error.add(angle(normal_at(flattest, i), -radial));
+  }
+  EXPECT_LT(flattest_error.max, 0.08);
+  EXPECT_LT(flattest_error.mean(), 0.012);
 }
 
 // A torus around the z axis (centre-line radius 60 mm, tube radius 20 mm) as a grid of nu x nv vertices; faces wind
@@ -321,6 +333,55 @@ TEST(EstimateNormals, DegenerateNeighbourhoodsGiveDefinedNormals) {
        estimate_normals(cloud_of(std::vector<Eigen::Vector3d>(4, Eigen::Vector3d(5.0, 0.0, 0.0))), options)) {
     expect_finite_unit(n);
   }
+}
+
+// A 90-degree crease z = |y| (faces' normals (0, -1, 1) / sqrt 2 and (0, 1, 1) / sqrt 2), 20000 random points over
+// 50 x 50 mm (spacing ~0.5 mm, a 16-neighbourhood reaches ~1.1 mm) with 0.02 mm noise along z. Plain PCA tilts the
+// normal of every point within a neighbourhood radius of the crease towards the other face; the flattest
+// neighbourhood gives such a point its own face's normal unless it lies on the other face's plane within the noise.
+TEST(EstimateNormals, NearACreaseEachPointTakesItsOwnFacesNormal) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-25.0, 25.0);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = u(rng), y = u(rng);
+    points.emplace_back(x, y, std::abs(y) + noise(rng));
+  }
+  const Cloud cloud = cloud_of(points);
+  NormalOptions options;
+  options.viewpoint = Eigen::Vector3d(0.0, 0.0, 1000.0);
+  const auto plain = estimate_normals(cloud, options);  // the default
+  options.flattest_neighbourhood = true;
+  const auto flattest = estimate_normals(cloud, options);
+  Stats near_flattest, near_plain, far_flattest;  // near: 0.2-1.5 mm from the crease (along y); far: beyond 3 mm
+  int off_flattest = 0, off_plain = 0;            // near points more than 0.1 rad off
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double y = points[i].y();
+    const Eigen::Vector3d truth = Eigen::Vector3d(0.0, y < 0.0 ? 1.0 : -1.0, 1.0).normalized();
+    if (std::abs(y) > 3.0) far_flattest.add(angle(normal_at(flattest, i), truth));
+    if (std::abs(y) < 0.2 || std::abs(y) > 1.5) continue;
+    near_flattest.add(angle(normal_at(flattest, i), truth));
+    near_plain.add(angle(normal_at(plain, i), truth));
+    off_flattest += angle(normal_at(flattest, i), truth) > 0.1 ? 1 : 0;
+    off_plain += angle(normal_at(plain, i), truth) > 0.1 ? 1 : 0;
+  }
+  std::printf(
+      "  crease: near %.4f / %.4f rad (mean / max), %d of %zu off by > 0.1 rad; plain PCA %.4f / %.4f, %d; far "
+      "%.4f / %.4f\n",
+      near_flattest.mean(), near_flattest.max, off_flattest, near_flattest.count, near_plain.mean(), near_plain.max,
+      off_plain, far_flattest.mean(), far_flattest.max);
+  EXPECT_GT(near_plain.max, 0.3);  // plain PCA: up to ~half the crease's angle
+  EXPECT_LT(near_flattest.mean(), 0.3 * near_plain.mean());
+  EXPECT_LT(off_flattest, off_plain / 5);
+  EXPECT_LT(far_flattest.max, 0.1);
+  // The same with one and two threads, and over a tree already built.
+  omp_set_num_threads(1);
+  const auto one = estimate_normals(cloud, options);
+  omp_set_num_threads(2);
+  EXPECT_EQ(std::memcmp(one.data(), flattest.data(), one.size() * sizeof(pcl::Normal)), 0);
+  const auto over_tree = estimate_normals(KdTree(cloud.points), options);
+  EXPECT_EQ(std::memcmp(over_tree.data(), flattest.data(), one.size() * sizeof(pcl::Normal)), 0);
 }
 
 TEST(EstimateNormals, KLargerThanTheCloudUsesAllPoints) {

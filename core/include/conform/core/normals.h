@@ -26,6 +26,12 @@ enum class NormalOrientation {
 
 struct NormalOptions {
   int k = 16;  // neighbours per point, >= 3 (all points if fewer)
+  // Take, for a point whose k neighbours straddle a step or crease, the plane of a neighbour's much flatter
+  // neighbourhood that the point lies on (normals.cpp, flattest_neighbourhoods): the normal of the point's own side,
+  // not a tilt between the sides. False: plain PCA over the point's own neighbours. Off by default and at every call
+  // site: better on the ribbed plate's ICP and the real small_gicp pair, worse on the sparsely sampled workpiece
+  // (docs/align.md, "Normals at steps and creases").
+  bool flattest_neighbourhood = false;
   NormalOrientation orientation = NormalOrientation::kTowardsViewpoint;
   Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();        // mm
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();       // mm, for the axis orientations
@@ -34,7 +40,8 @@ struct NormalOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Unit normals of every point; curvature holds the surface variation l0 / (l0 + l1 + l2) (l0 the smallest eigenvalue).
+// Unit normals of every point; curvature holds the surface variation l0 / (l0 + l1 + l2) (l0 the smallest eigenvalue)
+// of the neighbourhood the normal was taken from.
 // Throws conform::Error when options are invalid, the cloud has fewer than 3 points or a non-finite point.
 pcl::PointCloud<pcl::Normal> estimate_normals(const Cloud& cloud, const NormalOptions& options);
 
