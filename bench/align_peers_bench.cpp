@@ -4,7 +4,7 @@
 //         2 deg / 3.7 mm apart, clouds: conform (default method) against PCL 1.13's IterativeClosestPoint and
 //         Open3D's point-to-plane ICP and generalized ICP (reading the files and the normals included);
 //   mesh: a partial scan (65 % of the plate, 80k points, 0.02 mm noise) in another frame (40 deg, 37 mm away)
-//         against the plate's 306k-face height-field mesh (with a boss near a corner: see boss_height), coarse + fine: conform `--init fpfh` against Open3D's
+//         against the plate's 306k-face height-field mesh (with a boss near a corner: datasets/ribbed_boss_plate.h), coarse + fine: conform `--init fpfh` against Open3D's
 //         usual pipeline (voxel downsampling, normals, FPFH, RANSAC with mutual filter and the edge-length and distance
 //         checkers, then point-to-plane ICP, or generalized ICP, on all points; reading the files included).
 // Open3D runs in this process (no Python start-up, in its favour); conform as a child process (its start-up and file
@@ -54,6 +54,7 @@
 #include "conform/core/io.h"
 #include "conform/core/mesh.h"
 #include "conform/core/transform_io.h"
+#include "conform/datasets/ribbed_boss_plate.h"
 #include "conform/datasets/ribbed_plate.h"
 
 extern char** environ;
@@ -167,35 +168,6 @@ Eigen::Vector3d mean_of(const std::vector<Eigen::Vector3d>& points) {
   return m / static_cast<double>(points.size());
 }
 
-// The ribbed plate is symmetric under a half turn about z, so a partial scan of it fits two poses equally well; a
-// boss (8 mm radius, 4 mm high, 2 mm ramp) near one corner makes the mesh pair's pose unique.
-double boss_height(double x, double y) {
-  const double t = std::clamp((10.0 - std::hypot(x + 70.0, y - 45.0)) / 2.0, 0.0, 1.0);
-  return 4.0 * t * t * (3.0 - 2.0 * t);
-}
-
-// The plate (with the boss) as a height field on a regular grid of ~`spacing` mm, two triangles a cell.
-conform::Mesh plate_mesh(const conform::RibbedPlateOptions& o, double spacing) {
-  const int nx = static_cast<int>(std::lround(o.length_mm / spacing)) + 1;
-  const int ny = static_cast<int>(std::lround(o.width_mm / spacing)) + 1;
-  conform::Mesh mesh;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double x = -0.5 * o.length_mm + o.length_mm * i / (nx - 1);
-      const double y = -0.5 * o.width_mm + o.width_mm * j / (ny - 1);
-      mesh.vertices.emplace_back(x, y, conform::ribbed_plate_height(o, x, y) + boss_height(x, y));
-    }
-  }
-  for (int j = 0; j + 1 < ny; ++j) {
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
-      mesh.faces.push_back({a, b, d});
-      mesh.faces.push_back({a, d, c});
-    }
-  }
-  return mesh;
-}
-
 Case fine_case(const std::string& dir) {
   conform::RibbedPlateOptions o;
   o.seed = 1;
@@ -218,14 +190,14 @@ Case mesh_case(const std::string& dir, Case* near_case) {
   o.points = 123000;  // 65 % of them (x < 30 mm) are kept: ~80k
   std::vector<Eigen::Vector3d> scan;
   for (const Eigen::Vector3d& p : conform::ribbed_plate_samples(o)) {
-    if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + boss_height(p.x(), p.y()));
+    if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + conform::ribbed_plate_boss_height(p.x(), p.y()));
   }
   Case c;
   c.truth = pose(40.0, {1, -2, 3}, {30.0, -20.0, 10.0});
   c.scan_centroid = c.truth.inverse() * mean_of(scan);
   c.reference_file = dir + "/mesh_reference.ply";
   c.scan_file = dir + "/mesh_scan.ply";
-  const conform::Mesh mesh = plate_mesh(o, 0.442);
+  const conform::Mesh mesh = conform::ribbed_boss_plate_mesh(o, 0.442);
   std::printf("mesh pair: scan %zu points, reference %zu vertices, %zu faces\n", scan.size(), mesh.vertices.size(),
               mesh.faces.size());
   conform::write_mesh(c.reference_file, mesh);

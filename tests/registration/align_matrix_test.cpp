@@ -25,9 +25,9 @@
 #include <string>
 
 #include "boss_plate.h"
-#include "ribbed_boss_plate.h"
 #include "conform/core/io.h"
 #include "conform/core/random.h"
+#include "conform/datasets/ribbed_boss_plate.h"
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/datasets/workpiece.h"
 #include "conform/pipelines/align.h"
@@ -311,14 +311,14 @@ TEST(AlignMatrixBossPlateMesh, PartialScanAgainstMesh) {
     RibbedPlateOptions plate;
     plate.points = 30000;
     plate.seed = static_cast<std::uint64_t>(600 + seed);
-    const Mesh mesh = test::ribbed_boss_plate_mesh(plate, 1.0);
+    const Mesh mesh = ribbed_boss_plate_mesh(plate, 1.0);
     Trial t;
     t.reference = mesh.vertices;
     t.reference_faces = mesh.faces;
     t.truth = test::random_motion(random, M_PI, 50.0, Eigen::Vector3d::Zero());
     std::vector<Eigen::Vector3d> scan;
     for (const Eigen::Vector3d& p : ribbed_plate_samples(plate)) {
-      if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + test::boss_height(p.x(), p.y()));
+      if (p.x() < 30.0) scan.emplace_back(p.x(), p.y(), p.z() + ribbed_plate_boss_height(p.x(), p.y()));
     }
     t.scan = test::transformed_points(scan, t.truth.inverse());
     return t;
