@@ -44,7 +44,8 @@ class TriangleIndex {
  public:
   // Keeps its own copy of what it needs; the mesh may go away. Throws conform::Error for a mesh without faces, a face
   // index out of range or a NaN/infinite vertex. Faces without area are allowed (their closest points lie on their
-  // edges). Build cost O(n log n); memory about 175 bytes per face (a copy of the mesh for the pseudo-normals made on first use).
+  // edges). Build cost O(n log n); memory about 175 bytes per face (with a copy of the mesh, for the pseudo-normals
+  // made on first use).
   explicit TriangleIndex(const Mesh& mesh);
   ~TriangleIndex();
   TriangleIndex(TriangleIndex&&) noexcept;
