@@ -58,6 +58,7 @@ BoundingBox bounding_box(const Polyline& polyline) { return box_of(polyline.poin
 
 Eigen::Vector3d centroid(const Cloud& cloud) { return mean_of(cloud.points, of_pcl, "a cloud"); }
 Eigen::Vector3d centroid(const Mesh& mesh) { return mean_of(mesh.vertices, of_eigen, "a mesh"); }
+Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) { return mean_of(points, of_eigen, "points"); }
 
 std::size_t count_non_finite(const Cloud& cloud) {
   std::size_t n = 0;

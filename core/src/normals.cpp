@@ -43,9 +43,10 @@ Eigen::Vector3d unit_or(const Eigen::Vector3d& v, const Eigen::Vector3d& fallbac
 // The covariance is built in two passes (mean, then centred outer products) so that a neighbourhood 1e4 mm from the
 // origin keeps full precision. The closed form (computeDirect()) is tried first and kept when the neighbourhood is
 // round (l1 >= kRound l2): there it agrees with the iterative SelfAdjointEigenSolver to 1e-15 and is cheaper (the
-// iterative solver was 15 % of the normals' time; with the closed form they take 7 % less, docs/align.md "Speed"). Its eigenvalues carry an error of ~1e-9 of the largest, so it loses the
-// smallest eigenvector of an elongated neighbourhood (a scan line, a thin strip): 4.7e-5 rad instead of 3e-11 on
-// normals_test's 1:1000 strip, and 90 degrees off at 1:10000; those are solved again iteratively. At l1 >= kRound l2
+// iterative solver was 15 % of the normals' time; with the closed form they take 7 % less, docs/align.md "Speed").
+// Its eigenvalues carry an error of ~1e-9 of the largest, so it loses the smallest eigenvector of an elongated
+// neighbourhood (a scan line, a thin strip): 4.7e-5 rad instead of 3e-11 on normals_test's 1:1000 strip, and 90
+// degrees off at 1:10000; those are solved again iteratively. At l1 >= kRound l2
 // the closed form's error is below 1e-9 / kRound = 2e-8 rad, under the float output's resolution.
 // Degenerate neighbourhoods have no plane; they get a defined, NaN-free answer with curvature 0:
 //   all points coincide -> the unit reference direction;

@@ -72,12 +72,6 @@ SurfaceNoiseOptions noise_options() {
   return o;
 }
 
-Eigen::Vector3d scan_centre(const std::vector<Eigen::Vector3d>& scan) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : scan) sum += p;
-  return scan.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(scan.size()));
-}
-
 // "12.3 deg and 4.56 mm away": the turn between two starts' poses and how far the scan's centre lies apart at them
 // (a start shifted by a rib's pitch is 0.0 deg away, yet elsewhere).
 std::string how_far(const StartReport& best, const StartReport& other, const Eigen::Vector3d& centre) {
@@ -104,7 +98,7 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   std::vector<std::string> no, check;
   if (!icp.converged) no.push_back(std::string("ICP did not converge (") + to_string(icp.termination) + ")");
   const MultiStartResult& ranking = result.coarse.ranking;
-  const Eigen::Vector3d centre = scan_centre(scan);
+  const Eigen::Vector3d centre = centroid(scan);
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "conform/core/error.h"
+#include "conform/core/geometry.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/core/random.h"
 #include "conform/registration/horn.h"
@@ -23,12 +24,6 @@ struct Frame {
   std::vector<Eigen::Vector3d> scan, reference;  // relative to their own centroids: the tree searches in float
   Eigen::Vector3d scan_centre = Eigen::Vector3d::Zero(), reference_centre = Eigen::Vector3d::Zero();
 };
-
-Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) sum += p;
-  return sum / static_cast<double>(points.size());
-}
 
 std::vector<Eigen::Vector3d> shifted(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& by) {
   std::vector<Eigen::Vector3d> out;

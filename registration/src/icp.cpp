@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/core/geometry.h"
 #include "conform/registration/downsample.h"
 #include "convergence.h"
 #include "gicp.h"
@@ -69,12 +70,6 @@ struct Pass {
   double hold_noise_mm = 0.0;
   std::size_t held = 0;
 };
-
-Eigen::Vector3d mean_point(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) sum += p;
-  return points.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(points.size()));
-}
 
 // The k-th inlier for step_sums.h.
 auto pair_item(const std::vector<Pair>& pairs, const StepFigures& f) {
@@ -188,7 +183,7 @@ void iterate(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
       tolerance_scale * options.rotation_tolerance_rad, tolerance_scale * options.translation_tolerance_mm);
   detail::PairCache cache;  // the last step's searches, reused where exact: late steps search almost nothing
   cache.reset(points.size(), options.method == IcpMethod::kPointToSurface);
-  const Eigen::Vector3d scan_centre = mean_point(points);  // the step sums' origin, moved with the scan
+  const Eigen::Vector3d scan_centre = centroid(points);  // the step sums' origin, moved with the scan
   double last_motion_mm = 0.0;  // how far the last step moved the scan (at most), mm: the kernel's floor
   while (result.iterations < max_iterations) {
     report(options.progress, "icp", static_cast<double>(result.iterations) / options.max_iterations);
@@ -260,7 +255,7 @@ IcpResult run_pass(const ScanData& scan, const IcpReference& reference, const Ei
     // converged, the last step moved less than the tolerances and its pairs' figures stand for the final pose.)
     result.termination = IcpTermination::kMaxIterations;
     detail::find_pairs(scan.points, scan.normals, result.T_ref_scan, reference, rules, pairs);
-    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm, result.T_ref_scan * mean_point(scan.points));
+    const StepFigures f = evaluate(pairs, options, pass.hold_noise_mm, result.T_ref_scan * centroid(scan.points));
     record(pairs, f, scan.points.size(), options, pass, result);
   }
   record_final(pairs, scan.points.size(), options, pass, result);

@@ -30,12 +30,15 @@ TEST(Geometry, BoundingBoxAndCentroidSkipNonFinitePoints) {
   EXPECT_EQ(box.max, Eigen::Vector3d(1, 5, 3));
   EXPECT_EQ(count_non_finite(cloud), 1u);
   EXPECT_TRUE(centroid(cloud).isApprox(Eigen::Vector3d(0, 3.5, 1.5), 1e-12));
+  const std::vector<Eigen::Vector3d> points{{1, 2, 3}, {-1, 5, 0}, {std::numeric_limits<double>::infinity(), 0, 0}};
+  EXPECT_TRUE(centroid(points).isApprox(Eigen::Vector3d(0, 3.5, 1.5), 1e-12));
 }
 
 TEST(Geometry, EmptyInputsSayWhatIsWrong) {
   EXPECT_TRUE(bounding_box(Cloud{}).empty());
   EXPECT_EQ(bounding_box(Cloud{}).size(), Eigen::Vector3d::Zero());
   EXPECT_THROW(centroid(Cloud{}), Error);
+  EXPECT_THROW(centroid(std::vector<Eigen::Vector3d>{}), Error);
 }
 
 TEST(Geometry, TransformMovesPointsAndRotatesNormals) {

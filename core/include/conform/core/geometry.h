@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -37,6 +38,8 @@ BoundingBox bounding_box(const Polyline& polyline);
 Eigen::Vector3d centroid(const Cloud& cloud);
 // Mean of the finite vertices (not the area-weighted surface centroid).
 Eigen::Vector3d centroid(const Mesh& mesh);
+// Mean of the finite points. Throws conform::Error when there is no finite point.
+Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points);
 
 // Points with a NaN or infinite coordinate.
 std::size_t count_non_finite(const Cloud& cloud);
