@@ -74,15 +74,18 @@ class AlignCommand : public Command {
         ->required();
     c.add_option("--method", method_,
                  "point-to-point, point-to-plane, point-to-surface (closest point on the reference's triangles) or "
-                 "plane-to-plane (generalized ICP; also 'gicp'); default point-to-surface for a mesh reference, "
-                 "plane-to-plane for a cloud")
+                 "plane-to-plane (generalized ICP; also 'gicp'); default " +
+                     std::string(to_string(default_align_method(true))) + " for a mesh reference, " +
+                     to_string(default_align_method(false)) + " for a cloud")
         ->check(CLI::IsMember({"point-to-point", "point-to-plane", "point-to-surface", "plane-to-plane", "gicp"}));
     c.add_option("--init", init_,
                  "Coarse placement: none (the scan is roughly in place), pca (principal axes, all sign choices "
                  "tried), fpfh (FPFH features + RANSAC; partial overlap) or pairs:FILE (>= 3 point pairs, one per "
                  "line: scan x y z reference x y z)");
     c.add_option("--max-distance", options_.max_distance_mm,
-                 "Pairs farther apart are ignored, mm; default 10% of the reference's bounding-box diagonal");
+                 "Pairs farther apart are ignored, mm; default " +
+                     std::to_string(std::lround(100.0 * kAlignAutoDistanceShare)) + "%" +
+                     " of the reference's bounding-box diagonal");
     c.add_option("--overlap", options_.overlap,
                  "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed");
     c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");

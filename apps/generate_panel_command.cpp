@@ -33,7 +33,8 @@ class GeneratePanelCommand : public Command {
     c.add_option("--contour-spacing", o_.contour_spacing_mm, "Between contour points, mm");
     c.add_option("--trajectory-spacing", o_.trajectory_spacing_mm, "Between trajectory points, mm");
     c.add_option("--scan-points", o_.scan_points,
-                 "Scan points drawn before the missing parts are cut; default 300000 (nosecone), 120000 (plate)");
+                 "Scan points drawn before the missing parts are cut; 0: " +
+                     std::to_string(default_scan_points(o_.shape)));
     c.add_option("--noise", o_.noise_mm, "Gaussian noise along the surface normal, sigma, mm");
     c.add_option("--missing", o_.missing_fraction, "Share of the contour's length with no scan near it, in [0, 0.9]");
     c.add_option("--missing-patches", o_.missing_patches, "Arcs the missing share is split into");

@@ -2,16 +2,17 @@
 // (pipelines/generate_tube_joint.h), the input `conform tube-joint` expects.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "number_list.h"
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/pipelines/generate_tube_joint_json.h"
+#include "number_list.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -36,7 +37,8 @@ class GenerateTubeJointCommand : public Command {
     c.add_option("--pitch-deg", request_.pitch_deg, "Angle between the leg and stub axes, deg, in (0, 90]");
     c.add_option("--offset", job.spec.offset_mm, "Distance between the axes along y_L, mm");
     c.add_option("--protrusion", job.spec.protrusion_mm,
-                 "Stub's distal end to the leg axis along the stub axis, mm; default 0 = automatic (100 mm clear)");
+                 "Stub's distal end to the leg axis along the stub axis, mm; default 0 = automatic (" +
+                     std::to_string(std::lround(kAutoStubClearanceMm)) + " mm clear)");
     c.add_option("--leg-radius", job.joint.leg.radius_mm, "Leg outer radius, mm");
     c.add_option("--stub-radius", job.stub_outer_radius_mm, "Stub outer radius, mm");
     c.add_option("--wall", job.wall_mm, "Stub wall thickness (scanned inside: radius - wall), mm");
@@ -52,8 +54,7 @@ class GenerateTubeJointCommand : public Command {
     c.add_option("--leg-bump", leg_bumps_, "AZ_DEG,Z_L_MM,HEIGHT_MM,RADIUS_MM: a bump on the leg; repeatable");
     c.add_option("--stub-bump", stub_bumps_, "AZ_DEG,Z_S_MM,HEIGHT_MM,RADIUS_MM: a bump on the stub; repeatable");
     c.add_option("--noise", request_.noise_mm, "Gaussian noise along the normal, sigma, mm");
-    c.add_option("--leg-arc-deg", request_.leg_arc_deg,
-                 "Leg azimuth span, deg; default 0 = a patch around the joint");
+    c.add_option("--leg-arc-deg", request_.leg_arc_deg, "Leg azimuth span, deg; default 0 = a patch around the joint");
     c.add_option("--stub-length", job.joint.stub_length_mm,
                  "Stub length from its distal end, mm; default 0 = automatic (its end inside the leg)");
     c.add_option("--truth-points", job.joint.truth_points, "Ground-truth samples (equal stub azimuth)");

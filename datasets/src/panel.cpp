@@ -139,7 +139,7 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
   std::vector<double> cumulative;
   double area = 0.0;
   for (std::size_t f = 0; f < g.mesh.faces.size(); ++f) cumulative.push_back(area += face_area(g.mesh, f));
-  const std::int64_t count = o.scan_points > 0 ? o.scan_points : (o.shape == PanelShape::kPlate ? 120000 : 300000);
+  const std::int64_t count = o.scan_points > 0 ? o.scan_points : default_scan_points(o.shape);
   for (std::int64_t k = 0; k < count; ++k) {
     const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), pick.uniform() * area);
     const std::size_t f =

@@ -79,6 +79,8 @@ const char* to_string(PlateOpening opening) {
   return opening == PlateOpening::kEllipse ? "ellipse" : "rounded_rectangle";
 }
 
+std::int64_t default_scan_points(PanelShape shape) { return shape == PanelShape::kPlate ? 120000 : 300000; }
+
 PanelOptions harder_plate(PlateOpening opening, std::uint64_t seed) {
   PanelOptions o;
   o.shape = PanelShape::kPlate;

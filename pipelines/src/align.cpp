@@ -21,10 +21,6 @@ namespace conform {
 
 namespace {
 
-// The automatic maximum pair distance, as a share of the reference's bounding-box diagonal: wide enough for a scan
-// placed within a few degrees and a few percent, narrow enough that a scan beside the part finds nothing.
-constexpr double kAutoDistanceShare = 0.1;
-
 std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const AlignOptions& options) {
   if (options.scan_voxel_mm > 0.0) points = voxel_downsample(points, options.scan_voxel_mm);
   return stride_downsample(points, options.max_scan_points);
@@ -132,6 +128,10 @@ const char* to_string(AlignInit init) {
   return "unknown";
 }
 
+IcpMethod default_align_method(bool reference_has_faces) {
+  return reference_has_faces ? IcpMethod::kPointToSurface : IcpMethod::kPointToPlane;
+}
+
 bool AlignOptions::IsValid(std::string* error) const {
   std::string why;
   if (scan_path.empty()) {
@@ -195,7 +195,7 @@ AlignResult run_align(const AlignOptions& options) {
     detail::check_sizes(scan_mesh, reference_mesh, options.scan_path, options.reference_path, options.max_size_ratio);
   }
   result.method =
-      options.method.value_or(reference_mesh.has_faces() ? IcpMethod::kPointToSurface : IcpMethod::kPointToPlane);
+      options.method.value_or(default_align_method(reference_mesh.has_faces()));
   if (result.method == IcpMethod::kPointToSurface && !reference_mesh.has_faces()) {
     throw Error(options.reference_path + ": point-to-surface needs a reference mesh with faces; this file holds " +
                 "points only (use point-to-plane)");
@@ -222,7 +222,7 @@ AlignResult run_align(const AlignOptions& options) {
   // Fine point-to-surface ICP needs the triangle index: built beside the coarse stage, which is mostly serial.
   if (result.method == IcpMethod::kPointToSurface && options.init != AlignInit::kNone) reference.prepare_surface();
   result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
-                                                         : kAutoDistanceShare * bounding_box(reference_mesh).diagonal();
+                                                         : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, options, result.max_distance_mm, result);
   IcpOptions fine = fine_options(options, result.method, result.max_distance_mm);
   // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's

@@ -63,8 +63,8 @@ GenerateTubeJointResult run_generate_tube_joint(const GenerateTubeJointOptions& 
   GenerateTubeJointResult result;
   result.spec = options.spec;
   if (!(result.spec.protrusion_mm > 0.0)) {
-    result.spec.protrusion_mm =
-        automatic_protrusion(options.spec.pitch_rad, options.joint.leg.radius_mm, options.stub_outer_radius_mm, 100.0);
+    result.spec.protrusion_mm = automatic_protrusion(options.spec.pitch_rad, options.joint.leg.radius_mm,
+                                                     options.stub_outer_radius_mm, kAutoStubClearanceMm);
   }
   result.stub_inner_radius_mm = options.stub_outer_radius_mm - options.wall_mm;
   TubeJointOptions joint = options.joint;

@@ -133,6 +133,25 @@ TEST(AlignCommand, PlaneToPlaneByEitherName) {
   }
 }
 
+// The help names the default method a cloud reference gets, and that is the one a run without --method uses
+// (it once said plane-to-plane while the run used point-to-plane).
+TEST(AlignCommand, HelpStatesTheDefaultMethodTheRunUses) {
+  BlockFiles f;
+  const auto r = align({"--scan", f.scan, "--reference", f.reference, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string used = nlohmann::json::parse(r.out)["method"];
+  EXPECT_EQ(used, "point-to-plane");
+  const auto help = align({"--help"});
+  ASSERT_EQ(help.exit_code, 0);
+  std::string text;  // CLI11 wraps the description: every run of blanks and newlines as one space
+  for (const char c : help.out) {
+    const bool blank = c == ' ' || c == '\n';
+    if (!blank || (!text.empty() && text.back() != ' ')) text += blank ? ' ' : c;
+  }
+  EXPECT_NE(text.find("default point-to-surface for a mesh reference, " + used + " for a cloud"), std::string::npos)
+      << help.out;
+}
+
 TEST(AlignCommand, TextSaysConverged) {
   BlockFiles f;
   const auto text = align({"--scan", f.scan, "--reference", f.reference});

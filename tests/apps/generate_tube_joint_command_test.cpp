@@ -1,6 +1,7 @@
 // `conform generate tube-joint` end to end: three files or none, --json, the same bytes on a rerun, exit 2 for bad
 // input.
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,25 @@ TEST(GenerateTubeJointCommand, WritesTheThreeFilesAndTheSameBytesOnARerun) {
   ASSERT_EQ(test::run(CONFORM_EXE, args).exit_code, 0);
   EXPECT_EQ(test::read_bytes(dir.file("leg.ply")), leg);
   EXPECT_EQ(test::read_bytes(dir.file("truth.csv")), truth);
+}
+
+// The automatic protrusion leaves the stub's distal end as far clear of the leg as the help says: the stub's outer
+// radius 160 mm at 60 deg pitch on a 300 mm leg reaches (300 + 160 cos 60) / sin 60 from the leg's axis.
+TEST(GenerateTubeJointCommand, AutomaticProtrusionIsTheClearanceTheHelpStates) {
+  const test::RunResult help = test::run(CONFORM_EXE, {"generate", "tube-joint", "--help"});
+  ASSERT_EQ(help.exit_code, 0);
+  const std::size_t at = help.out.find("automatic (");
+  ASSERT_NE(at, std::string::npos) << help.out;
+  const double clearance = std::stod(help.out.substr(at + 11));
+  EXPECT_GT(clearance, 0.0);
+  test::TempDir dir;
+  auto args = small(dir);
+  args.push_back("--json");
+  const test::RunResult r = test::run(CONFORM_EXE, args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double pitch = M_PI / 3.0;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["protrusion_mm"].get<double>(),
+              (300.0 + 160.0 * std::cos(pitch)) / std::sin(pitch) + clearance, 1e-9);
 }
 
 TEST(GenerateTubeJointCommand, BadInputIsExitTwoAndLeavesNoFile) {

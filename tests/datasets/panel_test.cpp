@@ -109,6 +109,15 @@ TEST(Panel, NoseConeScanNoiseMissingArcsAndDeterminism) {
   for (std::size_t i = 0; i < again.scan.size(); ++i) EXPECT_EQ(again.scan.points[i].x, missing.scan.points[i].x);
 }
 
+// scan_points 0: each shape's default_scan_points (the number `generate plate --help` and `nosecone --help` state).
+TEST(Panel, ZeroScanPointsDrawsTheShapesDefault) {
+  EXPECT_EQ(default_scan_points(PanelShape::kPlate), 120000);
+  EXPECT_EQ(default_scan_points(PanelShape::kNoseCone), 300000);
+  PanelOptions o = small(PanelShape::kPlate);
+  o.scan_points = 0;
+  EXPECT_EQ(static_cast<std::int64_t>(generate_panel(o).scan.size()), default_scan_points(PanelShape::kPlate));
+}
+
 TEST(Panel, BadOptionsThrow) {
   PanelOptions o = small(PanelShape::kNoseCone);
   o.corner_radius_mm = 500.0;

@@ -62,7 +62,7 @@ struct PanelOptions {
   double surface_edge_mm = 2.0;        // edge length of the nominal surface mesh
   double contour_spacing_mm = 0.24;    // between contour points (~10,000 for the default nose cone)
   double trajectory_spacing_mm = 1.0;  // between trajectory points
-  std::int64_t scan_points = 0;        // 0: 300,000 for the nose cone, 120,000 for the plate
+  std::int64_t scan_points = 0;        // 0: default_scan_points(shape)
   double noise_mm = 0.05;              // Gaussian, along the deformed surface normal, sigma
   double missing_fraction = 0.0;       // share of the contour's length, in `missing_patches` arcs, with no scan near it
   int missing_patches = 4;
@@ -92,6 +92,9 @@ struct PanelOptions {
 
 const char* to_string(PanelShape shape);
 const char* to_string(PlateOpening opening);
+
+// The scan points drawn (before the missing parts are cut) when PanelOptions::scan_points is 0.
+std::int64_t default_scan_points(PanelShape shape);
 
 // The held-out harder plates of the S-ICP docs and tests: the default plate plus a smooth field of 6 mm (up to ~7 mm
 // of non-rigid displacement over the part with the sag), 0.05 mm noise, and the given opening (rounded rectangle

@@ -33,20 +33,28 @@ enum class AlignInit {
 
 const char* to_string(AlignInit init);
 
+// The automatic maximum pair distance (AlignOptions::max_distance_mm 0), as a share of the reference's bounding-box
+// diagonal: wide enough for a scan placed within a few degrees and a few percent, narrow enough that a scan beside
+// the part finds nothing.
+inline constexpr double kAlignAutoDistanceShare = 0.1;
+
+// The fine method when AlignOptions::method is empty: point-to-surface against a mesh, point-to-plane against a cloud
+// (docs/align.md, **Fine methods**: what each measured).
+IcpMethod default_align_method(bool reference_has_faces);
+
 struct AlignOptions {
   std::string scan_path;       // cloud or mesh, any format read_geometry reads
   std::string reference_path;  // mesh (point-to-surface possible) or cloud; or CAD (.step .stp .iges .igs)
   double mm_per_unit = 1.0;    // millimetres per unit of both files and of the pairs file (1000 for metres); not CAD
   CadReadOptions cad;          // a CAD reference: its tessellation (core/cad.h)
 
-  // Empty: point-to-surface against a mesh, point-to-plane against a cloud.
-  std::optional<IcpMethod> method;
+  std::optional<IcpMethod> method;  // empty: default_align_method(the reference has faces)
   AlignInit init = AlignInit::kNone;
   // kPairs: one pair per line, `scan_x scan_y scan_z reference_x reference_y reference_z` (file units; spaces or
   // commas; '#' starts a comment), at least 3 pairs not on one line.
   std::string pairs_path;
 
-  double max_distance_mm = 0.0;  // ICP's maximum pair distance; 0: automatic, 10% of the reference's box diagonal
+  double max_distance_mm = 0.0;  // ICP's maximum pair distance; 0: kAlignAutoDistanceShare of the reference's box diagonal
   double overlap = 1.0;          // trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]
   int max_iterations = 50;
   RobustKernel kernel = RobustKernel::kHuber;

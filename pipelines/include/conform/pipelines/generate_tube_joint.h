@@ -13,8 +13,12 @@
 
 namespace conform {
 
+// The automatic protrusion (GenerateTubeJointOptions::spec.protrusion_mm <= 0) leaves the stub's distal end this far
+// clear of the leg, mm.
+inline constexpr double kAutoStubClearanceMm = 100.0;
+
 struct GenerateTubeJointOptions {
-  TubeJointSpec spec;                   // protrusion_mm <= 0: automatic, the stub's distal end 100 mm clear of the leg
+  TubeJointSpec spec;                   // protrusion_mm <= 0: automatic, the distal end kAutoStubClearanceMm clear
   double stub_outer_radius_mm = 500.0;  // the stub's outer radius, mm
   double wall_mm = 25.0;                // the stub's wall: its scanned inner radius is outer - wall, mm
   // Leg (radius_mm = its outer radius) and stub (radius_mm ignored: outer - wall) deformations, edge length, noise,
