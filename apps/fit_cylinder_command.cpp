@@ -31,7 +31,8 @@ class FitCylinderCommand : public Command {
                  "Scan to fit, cloud or mesh (.ply .stl .obj .pcd .xyz .txt .asc .csv), or CAD; required")
         ->required();
     c.add_option("--threshold", options_.fit.threshold_mm,
-                 "Inlier distance to the surface, mm; default 0 = automatic (3 noise sigmas, estimated)");
+                 "Inlier distance to the surface, mm; default 0 = automatic (" +
+                     CLI::detail::to_string(options_.fit.inlier_sigmas) + " noise sigmas, estimated)");
     c.add_option("--min-radius", options_.fit.min_radius_mm, "Smallest radius accepted, mm");
     max_radius_ = c.add_option("--max-radius", max_radius_mm_, "Largest radius accepted, mm; 0: none");
     c.add_option("--axis", axis_, "Expected axis direction x y z (any length, either sign)")->expected(3);
