@@ -40,16 +40,12 @@ add_library(conform_pcl INTERFACE)
 target_include_directories(conform_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIRS})
 # Only the PCL libraries conform's code calls: with --as-needed (apps/CMakeLists.txt) `conform` then does not load
 # pcl_segmentation (45k relocations at start-up; it also exports search::OrganizedNeighbor, which would bind there).
-# Only pcl_common for conform's libraries; FPFH's libraries (pcl_features alone has 116k relocations, most of the
-# loader's work at start-up) go into the plugin module conform_fpfh (registration/CMakeLists.txt), opened on first use.
+# Only pcl_common for conform's libraries (its point types); conform's FPFH is its own (registration/src/
+# fpfh_features.h): pcl_features alone had 116k relocations, most of the loader's work at start-up.
 target_link_libraries(conform_pcl INTERFACE ${PCL_COMMON_LIBRARIES})
-add_library(conform_pcl_fpfh INTERFACE)
-target_link_libraries(conform_pcl_fpfh INTERFACE conform_pcl ${PCL_KDTREE_LIBRARIES} ${PCL_SEARCH_LIBRARIES}
-                                                 ${PCL_FEATURES_LIBRARIES} ${PCL_FILTERS_LIBRARIES}
-                                                 ${PCL_SAMPLE_CONSENSUS_LIBRARIES})
-# Every PCL component found, for the tests and benchmarks that use PCL as a peer (ICP, SAC segmentation).
+# Every PCL component found, for the tests and benchmarks that use PCL as a peer (ICP, FPFH, SAC segmentation).
 add_library(conform_pcl_all INTERFACE)
-target_link_libraries(conform_pcl_all INTERFACE conform_pcl_fpfh ${PCL_LIBRARIES})
+target_link_libraries(conform_pcl_all INTERFACE conform_pcl ${PCL_LIBRARIES})
 target_compile_definitions(conform_pcl INTERFACE ${PCL_DEFINITIONS})
 # conform_find_pcl_io(<target>...): PCL's io component (and VTK behind it) for the tests and benchmarks that write or
 # read files with pcl::io as a peer; conform itself does not link it. VTK's config needs MPI's C component found first.

@@ -1,8 +1,3 @@
-// PCL's templates, instantiated here, make GCC 12 report -Warray-bounds false positives inside Eigen's SSE loads of
-// 3-float vectors. The warning is located in the intrinsics header, so the pragma must cover its first inclusion,
-// before any other include.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Warray-bounds"
 #include "conform/registration/coarse_fpfh.h"
 
 #include <algorithm>
@@ -10,69 +5,52 @@
 #include <exception>
 #include <utility>
 
-#include <pcl/features/fpfh_omp.h>
-#include <pcl/filters/statistical_outlier_removal.h>
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/search/kdtree.h>
-
 #include "conform/core/cloud.h"
 #include "conform/core/error.h"
-#include "conform/core/nearest_neighbors.h"
 #include "conform/core/normals.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/feature_ransac.h"
-#pragma GCC diagnostic pop
+#include "fpfh_features.h"
 
 namespace conform {
 
 namespace {
 
-using Points = pcl::PointCloud<pcl::PointXYZ>;
-using Features = pcl::PointCloud<pcl::FPFHSignature33>;
-
 constexpr std::size_t kMinPoints = 10;
 constexpr int kNormalNeighbours = 16;
 constexpr double kMinPointsPerVoxel = 4.0;
-constexpr int kRefineIterations = 30;  // ICP steps refining each RANSAC pose on the downsampled clouds  // the automatic voxel: at least 2 point spacings on a surface
+constexpr int kRefineIterations = 30;  // ICP steps refining each RANSAC pose on the downsampled clouds  // the
+                                       // automatic voxel: at least 2 point spacings on a surface
 // Stray points are removed on a first voxel grid this much finer than the features' (a tenth of the points' cost;
 // a stray point stays alone in its small voxel, a cluster of copies becomes one point, alone).
 constexpr double kCleaningVoxel = 1.0 / 3.0;
 
 struct Described {
-  Points::Ptr points{new Points};
-  Features::Ptr features{new Features};
+  std::vector<Eigen::Vector3f> points;  // relative to the side's origin
+  std::vector<detail::FpfhHistogram> features;
 };
 
-// Downsampled points, relative to `origin` so that float keeps their precision, with their FPFH descriptors.
 // The points whose mean distance to their `k` nearest neighbours is within `sigmas` standard deviations of the mean
-// over all points (PCL's StatisticalOutlierRemoval): stray returns off the surface, each alone in its voxel, would
-// otherwise be as many downsampled points as the surface has and scramble its normals and histograms.
+// over all points (fpfh_features.h): stray returns off the surface, each alone in its voxel, would otherwise be as
+// many downsampled points as the surface has and scramble its normals and histograms.
 std::vector<Eigen::Vector3d> without_outliers(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin,
                                               int k, double sigmas) {
   if (k <= 0 || input.size() <= static_cast<std::size_t>(k)) return input;
-  Points::Ptr cloud(new Points);
-  for (const Eigen::Vector3d& p : input) {
-    const Eigen::Vector3f q = (p - origin).cast<float>();
-    cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
-  }
-  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> filter;
-  filter.setInputCloud(cloud);
-  filter.setMeanK(k);
-  filter.setStddevMulThresh(sigmas);
-  pcl::Indices kept;
-  filter.filter(kept);
+  std::vector<Eigen::Vector3f> local;
+  local.reserve(input.size());
+  for (const Eigen::Vector3d& p : input) local.push_back((p - origin).cast<float>());
   std::vector<Eigen::Vector3d> out;
-  out.reserve(kept.size());
-  for (const auto i : kept) out.push_back(input[static_cast<std::size_t>(i)]);
+  for (const std::size_t i : detail::statistical_inliers(local, k, sigmas)) out.push_back(input[i]);
   return out;
 }
 
+// Downsampled points, relative to `origin` so that float keeps their precision, with their FPFH descriptors.
 Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vector3d& origin, double voxel_mm,
                    double radius_mm, const FpfhOptions& options, const char* what) {
-  const std::vector<Eigen::Vector3d> down = voxel_downsample(
-      without_outliers(voxel_downsample(input, kCleaningVoxel * voxel_mm), origin, options.outlier_neighbours,
-                       options.outlier_sigmas),
-      voxel_mm);
+  const std::vector<Eigen::Vector3d> down =
+      voxel_downsample(without_outliers(voxel_downsample(input, kCleaningVoxel * voxel_mm), origin,
+                                        options.outlier_neighbours, options.outlier_sigmas),
+                       voxel_mm);
   if (down.size() < kMinPoints) {
     throw Error(std::string("FPFH: the ") + what + " has " + std::to_string(down.size()) + " points after " +
                 std::to_string(voxel_mm) + " mm voxels; at least " + std::to_string(kMinPoints) +
@@ -88,18 +66,17 @@ Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vecto
   NormalOptions normal_options;
   normal_options.k = kNormalNeighbours;
   normal_options.viewpoint = mean / static_cast<double>(down.size());
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>(estimate_normals(cloud, normal_options)));
-  // Away from the centroid rather than towards it: the same rule on both sides keeps the histograms comparable.
-  for (pcl::Normal& n : *normals) n.getNormalVector3fMap() *= -1.0f;
-
+  const pcl::PointCloud<pcl::Normal> normals = estimate_normals(cloud, normal_options);
   Described d;
-  *d.points = cloud.points;
-  pcl::FPFHEstimationOMP<pcl::PointXYZ, pcl::Normal, pcl::FPFHSignature33> fpfh;
-  fpfh.setInputCloud(d.points);
-  fpfh.setInputNormals(normals);
-  fpfh.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
-  fpfh.setRadiusSearch(radius_mm);
-  fpfh.compute(*d.features);
+  d.points.reserve(down.size());
+  std::vector<Eigen::Vector3f> turned;
+  turned.reserve(down.size());
+  for (std::size_t i = 0; i < down.size(); ++i) {
+    d.points.push_back(cloud.points[i].getVector3fMap());
+    // Away from the centroid rather than towards it: the same rule on both sides keeps the histograms comparable.
+    turned.push_back(-normals[i].getNormalVector3fMap());
+  }
+  d.features = detail::fpfh_histograms(d.points, turned, static_cast<float>(radius_mm));
   return d;
 }
 
@@ -109,32 +86,31 @@ Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vecto
 // are a help, not a condition).
 std::vector<std::pair<int, int>> matched(const Described& s, const Described& r, bool mutual, double ratio,
                                          std::size_t minimum) {
-  pcl::KdTreeFLANN<pcl::FPFHSignature33> in_reference, in_scan;
-  in_reference.setInputCloud(r.features);
-  if (mutual) in_scan.setInputCloud(s.features);
+  const detail::HistogramIndex in_reference(r.features);
+  const detail::HistogramIndex in_scan(s.features);
   std::vector<std::pair<int, int>> all, kept;
-  std::vector<int> index(2), back(1);
-  std::vector<float> distance(2), back_distance(1);
-  for (std::size_t i = 0; i < s.points->size(); ++i) {
-    const pcl::FPFHSignature33& f = (*s.features)[i];
-    if (!std::isfinite(f.histogram[0])) continue;
-    if (in_reference.nearestKSearch(f, 2, index, distance) < 2) continue;
-    all.emplace_back(static_cast<int>(i), index[0]);
+  std::vector<std::size_t> index, back;
+  std::vector<float> distance, back_distance;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const detail::FpfhHistogram& f = s.features[i];
+    if (!std::isfinite(f[0])) continue;
+    in_reference.knn(f, 2, index, distance);
+    if (index.size() < 2) continue;
+    all.emplace_back(static_cast<int>(i), static_cast<int>(index[0]));
     if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
-    if (mutual && (in_scan.nearestKSearch((*r.features)[static_cast<std::size_t>(index[0])], 1, back,
-                                          back_distance) < 1 ||
-                   back[0] != static_cast<int>(i))) {
-      continue;
+    if (mutual) {
+      in_scan.knn(r.features[index[0]], 1, back, back_distance);
+      if (back.empty() || back[0] != i) continue;
     }
-    kept.emplace_back(static_cast<int>(i), index[0]);
+    kept.emplace_back(static_cast<int>(i), static_cast<int>(index[0]));
   }
   return kept.size() >= minimum ? kept : all;
 }
 
-std::vector<Eigen::Vector3d> as_vectors(const Points& points) {
+std::vector<Eigen::Vector3d> as_vectors(const std::vector<Eigen::Vector3f>& points) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size());
-  for (const pcl::PointXYZ& p : points) out.push_back(p.getVector3fMap().cast<double>());
+  for (const Eigen::Vector3f& p : points) out.push_back(p.cast<double>());
   return out;
 }
 
@@ -169,7 +145,8 @@ double auto_voxel(const std::vector<Eigen::Vector3d>& scan, const std::vector<Ei
   for (const Eigen::Vector3d& p : reference) box.extend(p);
   double v = box.diagonal().norm() / 30.0;
   const auto count = [&](const std::vector<Eigen::Vector3d>& points) { return occupied_voxels(points, v); };
-  for (int pass = 0; pass < 2; ++pass) v *= std::sqrt(std::min(count(scan), count(reference)) / static_cast<double>(target));
+  for (int pass = 0; pass < 2; ++pass)
+    v *= std::sqrt(std::min(count(scan), count(reference)) / static_cast<double>(target));
   double floor = v;
   for (const std::vector<Eigen::Vector3d>* side : {&scan, &reference}) {
     const double per_voxel = static_cast<double>(side->size()) / count(*side);
@@ -220,7 +197,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   FpfhResult result;
   result.voxel_mm = options.voxel_mm > 0.0 ? options.voxel_mm : auto_voxel(scan, reference, options.target_points);
   const double v = result.voxel_mm;
-  // Each side relative to its own first point: PCL computes in float.
+  // Each side relative to its own first point: the features are computed in float.
   const Eigen::Vector3d scan_origin = scan.front(), ref_origin = reference.front();
   // The two sides at once, one a thread: most of describe() (voxels, outlier removal, normals) runs on one thread.
   // Each side's result is the same either way; the scan's error, if both fail, is the one reported, as before.
@@ -248,8 +225,8 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   for (const std::exception_ptr& e : failed) {
     if (e) std::rethrow_exception(e);
   }
-  result.scan_points = s.points->size();
-  result.reference_points = r.points->size();
+  result.scan_points = s.points.size();
+  result.reference_points = r.points.size();
 
   const std::vector<std::pair<int, int>> matches =
       matched(s, r, options.mutual, options.ratio, options.min_matched_points);
@@ -262,7 +239,7 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   ransac.confidence = options.confidence;
   ransac.seed = options.seed;
   ransac.hypotheses = options.hypotheses;
-  const FeatureRansacResult found = feature_ransac(as_vectors(*s.points), as_vectors(*r.points), matches, ransac);
+  const FeatureRansacResult found = feature_ransac(as_vectors(s.points), as_vectors(r.points), matches, ransac);
   result.iterations = found.iterations;
   result.match_share = found.match_share;
   for (const RansacPose& pose : found.poses) {

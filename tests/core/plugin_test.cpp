@@ -11,16 +11,16 @@
 namespace conform {
 namespace {
 
-// The FPFH module (registration/CMakeLists.txt) is built before every test (conform_add_tests).
-constexpr const char* kFpfh = "conform_fpfh";
+// The CAD module (cad/CMakeLists.txt, conform_add_plugin) is built before every test (conform_add_tests).
+constexpr const char* kCad = "conform_cad";
 
 TEST(Plugin, OpensAModuleOnceAndFindsItsFunctions) {
-  const Plugin& first = Plugin::load(kFpfh);
-  const Plugin& again = Plugin::load(kFpfh);
+  const Plugin& first = Plugin::load(kCad);
+  const Plugin& again = Plugin::load(kCad);
   EXPECT_EQ(&first, &again);
-  EXPECT_NE(first.path().find("libconform_fpfh.so"), std::string::npos) << first.path();
+  EXPECT_NE(first.path().find("libconform_cad.so"), std::string::npos) << first.path();
   using Fn = void(const std::string&);
-  EXPECT_NE(first.symbol<Fn>("conform_fpfh_ransac"), nullptr);
+  EXPECT_NE(first.symbol<Fn>("conform_cad_read"), nullptr);
 }
 
 TEST(Plugin, AMissingModuleNamesTheFileAndWhereItLooked) {
@@ -36,7 +36,7 @@ TEST(Plugin, AMissingModuleNamesTheFileAndWhereItLooked) {
 }
 
 TEST(Plugin, AMissingSymbolNamesTheModuleAndTheSymbol) {
-  const Plugin& plugin = Plugin::load(kFpfh);
+  const Plugin& plugin = Plugin::load(kCad);
   try {
     plugin.symbol<void()>("conform_no_such_symbol");
     FAIL() << "no error";

@@ -1,8 +1,8 @@
 #pragma once
-// Shared modules loaded on first use (dlopen), so that a heavy library (PCL's features for FPFH, OpenCASCADE for
-// STEP) costs start-up time only in the runs that need it: `conform --help` binds no symbol of theirs.
+// Shared modules loaded on first use (dlopen), so that a heavy library (OpenCASCADE for STEP and IGES) costs
+// start-up time only in the runs that need it: `conform --help` binds no symbol of theirs.
 //
-// Plugin::load("conform_fpfh") opens libconform_fpfh.so, looked for in this order: beside the executable
+// Plugin::load("conform_cad") opens libconform_cad.so, looked for in this order: beside the executable
 // (/proc/self/exe's directory: the build tree's `conform` and an installed one), the install's lib directory
 // (CMAKE_INSTALL_PREFIX/lib), then the build tree's top directory (tests, benchmarks and bindings run from it).
 // A module is opened once per process (thread-safe) and never closed: its code may have thrown exceptions or
