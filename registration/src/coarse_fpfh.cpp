@@ -88,21 +88,36 @@ std::vector<std::pair<int, int>> matched(const Described& s, const Described& r,
                                          std::size_t minimum) {
   const detail::HistogramIndex in_reference(r.features);
   const detail::HistogramIndex in_scan(s.features);
-  std::vector<std::pair<int, int>> all, kept;
-  std::vector<std::size_t> index, back;
-  std::vector<float> distance, back_distance;
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const detail::FpfhHistogram& f = s.features[i];
-    if (!std::isfinite(f[0])) continue;
-    in_reference.knn(f, 2, index, distance);
-    if (index.size() < 2) continue;
-    all.emplace_back(static_cast<int>(i), static_cast<int>(index[0]));
-    if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
-    if (mutual) {
-      in_scan.knn(r.features[index[0]], 1, back, back_distance);
-      if (back.empty() || back[0] != i) continue;
+  // Per scan point: its nearest reference feature (-1: none) and whether the pair passes the filters; searched in
+  // parallel, collected in scan order.
+  const std::size_t n = s.points.size();
+  std::vector<int> nearest(n, -1);
+  std::vector<char> passes(n, 0);
+#pragma omp parallel
+  {
+    std::vector<std::size_t> index, back;
+    std::vector<float> distance, back_distance;
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n); ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const detail::FpfhHistogram& f = s.features[i];
+      if (!std::isfinite(f[0])) continue;
+      in_reference.knn(f, 2, index, distance);
+      if (index.size() < 2) continue;
+      nearest[i] = static_cast<int>(index[0]);
+      if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
+      if (mutual) {
+        in_scan.knn(r.features[index[0]], 1, back, back_distance);
+        if (back.empty() || back[0] != i) continue;
+      }
+      passes[i] = 1;
     }
-    kept.emplace_back(static_cast<int>(i), static_cast<int>(index[0]));
+  }
+  std::vector<std::pair<int, int>> all, kept;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (nearest[i] < 0) continue;
+    all.emplace_back(static_cast<int>(i), nearest[i]);
+    if (passes[i] != 0) kept.emplace_back(static_cast<int>(i), nearest[i]);
   }
   return kept.size() >= minimum ? kept : all;
 }
