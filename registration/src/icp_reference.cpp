@@ -90,9 +90,18 @@ struct IcpReference::SurfaceState {
   void build(const MakeMesh& make_mesh, const std::vector<Eigen::Vector3d>& normals) {
     std::call_once(once, [&] {
       const Mesh mesh = make_mesh();
+      // The two are independent: the smooth surface on a second thread when OpenMP may use one (it costs about half
+      // the index), joined before either is used. The reference's own normals at smooth vertices, so that the curved
+      // surface is the one its normals describe.
+      const auto make_phong = [&] { phong = std::make_unique<PhongSurface>(mesh, normals); };
+      std::future<void> beside;
+      if (omp_get_max_threads() >= 2) beside = std::async(std::launch::async, make_phong);
       index = std::make_unique<TriangleIndex>(mesh);
-      // The reference's own normals at smooth vertices, so the curved surface is the one its normals describe.
-      phong = std::make_unique<PhongSurface>(mesh, normals);
+      if (beside.valid()) {
+        beside.get();  // rethrows the smooth surface's error, if any
+      } else {
+        make_phong();
+      }
     });
   }
 };
