@@ -131,11 +131,12 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
       }
     }
     const Vector6d& sd = r.icp.degeneracy.std;
-    std::printf("  %s seed %d: %s %s, %.3f deg %.3f mm (start %.3f deg %.3f mm), std %.3f deg %.3f mm, error %.1f "
-                "std, start '%s', %d iterations, noise %.3f, held%s: %s\n",
-                name, seed, ok ? "right" : "WRONG", accepted ? "accepted" : "refused", deg, mm, start_deg, start_mm,
-                sd.head<3>().maxCoeff() * 180.0 / M_PI, sd.tail<3>().maxCoeff(), error_in_std(t, r), r.start.c_str(),
-                r.icp.iterations, r.icp.degeneracy.noise_mm, held.c_str(), r.verdict.summary.c_str());
+    std::printf(
+        "  %s seed %d: %s %s, %.3f deg %.3f mm (start %.3f deg %.3f mm), std %.3f deg %.3f mm, error %.1f "
+        "std, start '%s', %d iterations, noise %.3f, held%s: %s\n",
+        name, seed, ok ? "right" : "WRONG", accepted ? "accepted" : "refused", deg, mm, start_deg, start_mm,
+        sd.head<3>().maxCoeff() * 180.0 / M_PI, sd.tail<3>().maxCoeff(), error_in_std(t, r), r.start.c_str(),
+        r.icp.iterations, r.icp.degeneracy.noise_mm, held.c_str(), r.verdict.summary.c_str());
     AlignResult start = r;
     start.icp.T_ref_scan = r.T_start;
     tally.start_right += right(t, start);
@@ -189,7 +190,9 @@ TEST(AlignMatrixWorkpiece, PartialScans) {
       within(1.0, 1.0), profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10
-  EXPECT_GE(t.right, 2);        // measured 3 (before the convergence and hold rules of issue 13: 0-3)
+  // Measured 3 (before the convergence and hold rules of issue 13: 0-3). On another stream (seeds 11-20, RANSAC
+  // seeds + 10: a local edit) 1, with conform's FPFH as with PCL's: the rest refused, none wrong.
+  EXPECT_GE(t.right, 2);
 }
 
 // The golden sample in shop coordinates: 100 m from the origin, turned; the scan in the scanner's frame.
@@ -202,16 +205,17 @@ TEST(AlignMatrixWorkpiece, ShopFrameCoordinates) {
       profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10
-  EXPECT_GE(t.right, 2);        // measured 3 (before: 0-1)
+  EXPECT_GE(t.right, 2);        // measured 3 (before: 0-1); 1 on the other stream (above)
 }
 
 TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
   const Tally t = run_matrix(
-      "noise and outliers",
-      [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); }, within(1.0, 1.0),
-      profiler_tolerance);
+      "noise and outliers", [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); },
+      within(1.0, 1.0), profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.start_right, 3);  // measured 4 and 6 on two RANSAC streams (PCL's RANSAC: 8; 1 without the outlier removal)
+  // Measured 4 and 6 on two RANSAC streams (PCL's RANSAC: 8; 1 without the outlier removal); with conform's own FPFH
+  // 5 here and 4 on the other stream (seeds 11-20).
+  EXPECT_GE(t.start_right, 3);
 }
 
 // A coarse profiler pitch: steep walls (0.3 mm run) under points ~2 mm apart, so that the walls, the only thing
@@ -228,11 +232,12 @@ TEST(AlignMatrixWorkpiece, SparseWalls) {
   };
   const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0), profiler_tolerance);
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.start_right, 4);  // measured 5 (main's PCL RANSAC: 6)
+  EXPECT_GE(t.start_right, 4);  // measured 5 (main's PCL RANSAC: 6); with conform's own FPFH 6, and 8 on seeds 11-20
 }
 
 // Random points on a cylinder's side (axis z, centred), radius r, length l, over `arc` radians, with radial noise.
-std::vector<Eigen::Vector3d> cylinder_points(double r, double l, double arc, std::size_t n, double noise, Random& random) {
+std::vector<Eigen::Vector3d> cylinder_points(double r, double l, double arc, std::size_t n, double noise,
+                                             Random& random) {
   std::vector<Eigen::Vector3d> out(n);
   for (Eigen::Vector3d& p : out) {
     const double a = random.uniform(0.0, arc), z = random.uniform(-0.5 * l, 0.5 * l);
@@ -263,7 +268,8 @@ TEST(AlignMatrixSymmetry, CylinderIsFreeOrRefused) {
       const double e = q.head<2>().norm() - 40.0;
       sum += e * e;
     }
-    const double axis = std::abs((r.icp.T_ref_scan.linear() * t.truth.linear().transpose() * Eigen::Vector3d::UnitZ()).z());
+    const double axis =
+        std::abs((r.icp.T_ref_scan.linear() * t.truth.linear().transpose() * Eigen::Vector3d::UnitZ()).z());
     return std::sqrt(sum / static_cast<double>(t.scan.size())) < 0.15 && axis > std::cos(0.5 * test::kDeg) &&
            r.icp.degeneracy.directions.size() >= 2 && r.verdict.trust != AlignTrust::kYes;
   };
