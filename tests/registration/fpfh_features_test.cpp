@@ -242,6 +242,12 @@ TEST(FpfhFeatures, NearestHistogramsEqualBruteForce) {
   index.knn(set[0], 400, found, d2);
   EXPECT_EQ(found.size(), 399u);
   EXPECT_EQ(std::count(found.begin(), found.end(), std::size_t{7}), 0);
+  // A set of NaN rows only (every normal of a side undefined): nothing to find.
+  const std::vector<FpfhHistogram> none(3, set[7]);
+  const HistogramIndex empty(none);
+  empty.knn(set[0], 2, found, d2);
+  EXPECT_TRUE(found.empty());
+  EXPECT_TRUE(d2.empty());
 }
 
 }  // namespace
