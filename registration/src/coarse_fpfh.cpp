@@ -18,9 +18,7 @@ namespace {
 
 constexpr std::size_t kMinPoints = 10;
 constexpr int kNormalNeighbours = 16;
-constexpr double kMinPointsPerVoxel = 4.0;
-constexpr int kRefineIterations = 30;  // ICP steps refining each RANSAC pose on the downsampled clouds  // the
-                                       // automatic voxel: at least 2 point spacings on a surface
+constexpr double kMinPointsPerVoxel = 4.0;  // the automatic voxel: at least 2 point spacings on a surface
 // Stray points are removed on a first voxel grid this much finer than the features' (a tenth of the points' cost;
 // a stray point stays alone in its small voxel, a cluster of copies becomes one point, alone).
 constexpr double kCleaningVoxel = 1.0 / 3.0;
