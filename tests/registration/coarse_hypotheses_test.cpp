@@ -11,6 +11,7 @@
 #include "conform/core/error.h"
 #include "conform/registration/coarse.h"
 #include "boss_plate.h"
+#include "registration_test_util.h"
 #include "test_parts.h"
 
 namespace conform {
@@ -46,7 +47,8 @@ Tally boss_plate_trials(int seeds) {
   reference_mesh.vertices = test::boss_plate(1.5, 0.0);
   const IcpReference reference(reference_mesh);
   Tally tally;
-  for (int seed = 1; seed <= seeds; ++seed) {
+  for (int trial = 1; trial <= seeds; ++trial) {
+    const int seed = test::matrix_seed(trial, seeds);
     Random random(static_cast<std::uint64_t>(100 + seed));
     const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 50.0, Eigen::Vector3d::Zero());
     const std::vector<Eigen::Vector3d> scan =
@@ -73,7 +75,8 @@ Tally partial_box_trials(int seeds) {
   const test::TestPart part = test::make_test_part(test::PartKind::kBox);
   const IcpReference reference(part.reference);
   Tally tally;
-  for (int seed = 1; seed <= seeds; ++seed) {
+  for (int trial = 1; trial <= seeds; ++trial) {
+    const int seed = test::matrix_seed(trial, seeds);
     Random random(static_cast<std::uint64_t>(200 + seed));
     const Eigen::Vector3d cut = test::random_direction(random);
     std::vector<double> heights;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,19 @@
 namespace conform::test {
 
 constexpr double kDeg = M_PI / 180.0;
+
+// The seed stream of the realistic-variation matrices: CONFORM_MATRIX_STREAM=k (default 0) runs a matrix of `count`
+// seeds on seeds k count + 1 .. (k + 1) count instead of 1 .. count, so that a change is judged on several
+// streams, not tuned to one (run by hand; CI runs stream 0, whose tallies the tests assert). Each seed's share of
+// a stepped parameter comes from matrix_index(), the seed's place in its stream.
+inline int matrix_stream() {
+  const char* value = std::getenv("CONFORM_MATRIX_STREAM");
+  return value == nullptr ? 0 : std::max(0, std::atoi(value));
+}
+// The i-th seed (i = 1 .. count) of the stream.
+inline int matrix_seed(int i, int count) { return i + count * matrix_stream(); }
+// Where `seed` stands in its stream: 0 .. count - 1.
+inline int matrix_index(int seed, int count) { return (seed - 1) % count; }
 
 // Rotation angle of R_est R_true^T (deg) and |t_est - t_true| (mm) of two T_ref_scan.
 inline double rotation_error_deg(const Eigen::Isometry3d& est, const Eigen::Isometry3d& truth) {
