@@ -83,30 +83,43 @@ double cpu_of(const rusage& u) {
          1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-// Runs `args` as a child process `repeats` times; exits the bench if it fails.
+// Starts `args` as a child process, stdout to /dev/null and stderr to `stderr_fd` (-1: /dev/null; the child does
+// not inherit `close_fd`); exits the bench if it cannot.
+pid_t spawn(const std::vector<std::string>& args, int stderr_fd = -1, int close_fd = -1) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  if (stderr_fd < 0) {
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  } else {
+    posix_spawn_file_actions_adddup2(&actions, stderr_fd, 2);
+  }
+  if (close_fd >= 0) posix_spawn_file_actions_addclose(&actions, close_fd);
+  pid_t pid = 0;
+  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (failed != 0) {
+    std::fprintf(stderr, "cannot run %s\n", argv[0]);
+    std::exit(2);
+  }
+  return pid;
+}
+
+// Runs `args` as a child process `repeats` times; exits the bench if it cannot start it.
 Timing time_process(const std::vector<std::string>& args, int repeats) {
   Timing best;
   for (int r = 0; r < repeats; ++r) {
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
     const double start = now();
-    pid_t pid = 0;
-    if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0) {
-      std::fprintf(stderr, "cannot run %s\n", argv[0]);
-      std::exit(2);
-    }
+    const pid_t pid = spawn(args);
     int status = 0;
     rusage usage{};
     wait4(pid, &status, 0, &usage);
     const double wall = now() - start;
-    posix_spawn_file_actions_destroy(&actions);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-      std::fprintf(stderr, "%s exited with %d\n", argv[0], WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+      std::fprintf(stderr, "%s exited with %d\n", args[0].c_str(), WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     }
     if (wall < best.wall) best = {wall, cpu_of(usage)};
   }
@@ -116,25 +129,15 @@ Timing time_process(const std::vector<std::string>& args, int repeats) {
 // One more run of `args` with its stderr read as it comes: the time from the start at which each progress line
 // ("conform: <stage> ...") appeared, and the end. Printed as each stage's duration: where the process's time goes.
 void print_stages(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
   int fds[2];
   if (pipe(fds) != 0) return;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
-  posix_spawn_file_actions_addclose(&actions, fds[0]);
   const double start = now();
-  pid_t pid = 0;
-  const bool spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = spawn(args, fds[1], fds[0]);
   close(fds[1]);
   std::vector<std::pair<double, std::string>> stamps;
   std::string line;
   char c = 0;
-  while (spawned && read(fds[0], &c, 1) == 1) {
+  while (read(fds[0], &c, 1) == 1) {
     if (c != '\n') {
       line += c;
       continue;
@@ -147,7 +150,6 @@ void print_stages(const std::vector<std::string>& args) {
     line.clear();
   }
   close(fds[0]);
-  if (!spawned) return;
   int status = 0;
   waitpid(pid, &status, 0);
   const double end = now() - start;
