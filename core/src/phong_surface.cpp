@@ -4,6 +4,7 @@
 #include <string>
 
 #include "conform/core/error.h"
+#include "conform/core/planar_regions.h"
 
 namespace conform {
 
@@ -112,42 +113,59 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
     for (Eigen::Vector3d& v : normals_) v = unit_or_zero(v);
   }
   smooth_ = smooth_vertices(mesh, normals_, crease_angle_rad);
+  const std::vector<unsigned char> flat = planar_faces(mesh, crease_angle_rad);
 
-  // The faces around each vertex that is not smooth (compressed rows).
+  // The faces around each vertex (compressed rows).
   std::vector<std::size_t> start(n + 1, 0);
   for (const Face& face : mesh.faces) {
-    for (std::int32_t i : face) start[static_cast<std::size_t>(i) + 1] += smooth_[static_cast<std::size_t>(i)] ? 0 : 1;
+    for (std::int32_t i : face) ++start[static_cast<std::size_t>(i) + 1];
   }
   for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
   std::vector<std::size_t> around(start[n]);
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (std::int32_t i : mesh.faces[f]) {
-      if (!smooth_[static_cast<std::size_t>(i)]) around[fill[static_cast<std::size_t>(i)]++] = f;
-    }
+    for (std::int32_t i : mesh.faces[f]) around[fill[static_cast<std::size_t>(i)]++] = f;
   }
 
   const double crease_cosine = std::cos(crease_angle_rad);
+  // The angle-weighted normal of the faces around v within the crease angle of `own` (all of them, or only the
+  // planes'); zero when there are none.
+  const auto side_normal = [&](std::int32_t v, const Eigen::Vector3d& own, bool planes_only) {
+    const auto vu = static_cast<std::size_t>(v);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t j = start[vu]; j < start[vu + 1]; ++j) {
+      const std::size_t g = around[j];
+      if (planes_only && !flat[g]) continue;
+      const Eigen::Vector3d other = unit_or_zero(face_normals[g]);
+      if (other.dot(own) < crease_cosine) continue;
+      const Face& gf = mesh.faces[g];
+      const int corner = gf[0] == v ? 0 : gf[1] == v ? 1 : 2;
+      sum += corner_angle(mesh, gf, corner) * other;
+    }
+    return unit_or_zero(sum);
+  };
   corners_.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Eigen::Vector3d own = unit_or_zero(face_normals[f]);
+    if (flat[f]) {
+      // A plane's face stays flat (core/planar_regions.h).
+      const auto index = static_cast<std::int32_t>(normals_.size());
+      normals_.push_back(own);
+      corners_[f] = {index, index, index};
+      continue;
+    }
     for (int k = 0; k < 3; ++k) {
       const std::int32_t v = mesh.faces[f][static_cast<std::size_t>(k)];
-      const auto vu = static_cast<std::size_t>(v);
       corners_[f][static_cast<std::size_t>(k)] = v;
-      if (smooth_[vu]) continue;
-      // The faces on this face's side of the crease, angle-weighted.
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (std::size_t j = start[vu]; j < start[vu + 1]; ++j) {
-        const std::size_t g = around[j];
-        const Eigen::Vector3d other = unit_or_zero(face_normals[g]);
-        if (other.dot(own) < crease_cosine) continue;
-        const Face& gf = mesh.faces[g];
-        const int corner = gf[0] == v ? 0 : gf[1] == v ? 1 : 2;
-        sum += corner_angle(mesh, gf, corner) * other;
+      // Where a curved face meets a plane within the crease angle, the junction is tangent and the surface normal
+      // there is the plane's; otherwise at a crease, the faces on this face's side of it.
+      Eigen::Vector3d corner = side_normal(v, own, true);
+      if (corner.isZero()) {
+        if (smooth_[static_cast<std::size_t>(v)]) continue;
+        corner = side_normal(v, own, false);
       }
       corners_[f][static_cast<std::size_t>(k)] = static_cast<std::int32_t>(normals_.size());
-      normals_.push_back(unit_or_zero(sum));
+      normals_.push_back(corner);
     }
   }
 }
