@@ -20,9 +20,9 @@ foreach(toolkit TKSTEP TKSTEPBase TKXSBase TKIGES TKMesh TKTopAlgo TKBRep TKGeom
   find_library(OCCT_${toolkit} ${toolkit} REQUIRED)
   list(APPEND OCCT_LIBRARIES ${OCCT_${toolkit}})
 endforeach()
-# What the tests need beyond the reader to build and write shapes (primitives, booleans, classification).
+# What the tests need beyond the reader to build and write shapes (primitives, booleans, fillets, classification).
 set(OCCT_TEST_LIBRARIES)
-foreach(toolkit TKPrim TKBO TKBool)
+foreach(toolkit TKPrim TKBO TKBool TKFillet)
   find_library(OCCT_${toolkit} ${toolkit} REQUIRED)
   list(APPEND OCCT_TEST_LIBRARIES ${OCCT_${toolkit}})
 endforeach()

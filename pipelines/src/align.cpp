@@ -8,6 +8,7 @@
 
 #include <omp.h>
 
+#include "align_coarse_reference.h"
 #include "align_inputs.h"
 #include "align_verdict.h"
 #include "conform/core/error.h"
@@ -30,10 +31,11 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
   IcpOptions icp;
   icp.method = method;
   icp.max_correspondence_distance_mm = max_distance_mm;
-  icp.overlap = options.overlap;
+  icp.estimate_overlap = options.overlap == 0.0;
+  icp.overlap = icp.estimate_overlap ? 1.0 : options.overlap;
   icp.kernel = options.kernel;
   icp.max_iterations = options.max_iterations;
-  icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, options.overlap);
+  icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, icp.overlap);
   icp.free_tolerance_mm = options.free_tolerance_mm;
   icp.free_tolerance_rad = options.free_tolerance_deg * M_PI / 180.0;
   icp.progress = options.progress;
@@ -42,7 +44,8 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
 
 // Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
 void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
-                    const AlignOptions& options, double max_distance_mm, AlignResult& result) {
+                    const Mesh& reference_mesh, const AlignOptions& options, double max_distance_mm,
+                    AlignResult& result) {
   switch (options.init) {
     case AlignInit::kNone:
       result.start = "identity";
@@ -61,10 +64,25 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   coarse.fpfh.seed = options.seed;
   // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
   coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm);
+  // The probes find the basin: every pair pulls (a start a few mm off slides home only if the part of the scan that
+  // is off the surface is not trimmed away). The estimated overlap is the fine fit's, from the winner's pose.
+  coarse.multi_start.probe.estimate_overlap = false;
   coarse.multi_start.probe.max_iterations = 15;
   coarse.multi_start.probe.progress = nullptr;
   coarse.progress = options.progress;
-  result.coarse = coarse_align(scan, reference, coarse);
+  if (reference_mesh.has_faces()) {
+    // Features and scores over the reference's surface at the scan's spacing, not over its vertices
+    // (align_coarse_reference.h): a CAD tessellation's vertices are only on its faces' rims.
+    const double spacing = detail::scan_spacing(scan);
+    if (spacing > 0.0) {
+      const IcpReference surface(detail::coarse_reference(reference_mesh, spacing));
+      result.coarse = coarse_align(scan, surface, coarse);
+    } else {
+      result.coarse = coarse_align(scan, reference, coarse);
+    }
+  } else {
+    result.coarse = coarse_align(scan, reference, coarse);
+  }
   result.T_start = result.coarse.T_ref_scan;
   result.start = result.coarse.winner;
   const MultiStartResult& ranking = result.coarse.ranking;
@@ -144,8 +162,8 @@ bool AlignOptions::IsValid(std::string* error) const {
     why = "init pairs needs a pairs file";
   } else if (!(max_distance_mm >= 0.0) || std::isnan(max_distance_mm)) {
     why = "max distance must be > 0 mm (0: automatic)";
-  } else if (!(overlap > 0.0 && overlap <= 1.0)) {
-    why = "overlap " + std::to_string(overlap) + " must be in (0, 1]";
+  } else if (!(overlap >= 0.0 && overlap <= 1.0)) {
+    why = "overlap " + std::to_string(overlap) + " must be in (0, 1] (0: estimated)";
   } else if (max_iterations < 1) {
     why = "max iterations must be >= 1";
   } else if (!(scan_voxel_mm >= 0.0) || !std::isfinite(scan_voxel_mm)) {
@@ -159,6 +177,10 @@ bool AlignOptions::IsValid(std::string* error) const {
     why = "free tolerances must be finite and > 0";
   } else if (!(max_noise_ratio == 0.0 || max_noise_ratio > 1.0) || !std::isfinite(max_noise_ratio)) {
     why = "max_noise_ratio must be > 1 (0: no check)";
+  } else if (!(pose_tolerance_mm >= 0.0) || !std::isfinite(pose_tolerance_mm)) {
+    why = "pose tolerance must be finite and >= 0 mm (0: from the data)";
+  } else if (!(tolerance_mm >= 0.0) || !std::isfinite(tolerance_mm)) {
+    why = "tolerance must be finite and >= 0 mm (0: not stated)";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -223,7 +245,7 @@ AlignResult run_align(const AlignOptions& options) {
   if (result.method == IcpMethod::kPointToSurface && options.init != AlignInit::kNone) reference.prepare_surface();
   result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
                                                          : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
-  place_coarsely(scan, reference, options, result.max_distance_mm, result);
+  place_coarsely(scan, reference, reference_mesh, options, result.max_distance_mm, result);
   IcpOptions fine = fine_options(options, result.method, result.max_distance_mm);
   // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's
   // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.

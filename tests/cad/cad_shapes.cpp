@@ -8,10 +8,13 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <TopoDS_Compound.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepClass_FaceClassifier.hxx>
+#include <BRepFilletAPI_MakeChamfer.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLProp_SLProps.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -26,7 +29,10 @@
 #include <Message_Messenger.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
@@ -41,6 +47,33 @@ TopoDS_Shape box_with_boss_and_hole() {
   const TopoDS_Shape fused = BRepAlgoAPI_Fuse(block, boss).Shape();
   const TopoDS_Shape drill = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(45, 20, -5), gp::DZ()), 6.0, 40.0).Shape();
   return BRepAlgoAPI_Cut(fused, drill).Shape();
+}
+
+TopoDS_Shape filleted_block() {
+  const TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 60.0, 40.0, 20.0).Shape();
+  BRepFilletAPI_MakeFillet fillet(block);
+  // The four vertical edges: both ends at the same x and y.
+  for (TopExp_Explorer e(block, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
+    if (std::abs(a.X() - b.X()) < 1e-9 && std::abs(a.Y() - b.Y()) < 1e-9) fillet.Add(10.0, edge);
+  }
+  const TopoDS_Shape rounded = fillet.Shape();
+  // The chamfer on the top edge along y = 40 (z = 20, y = 40, x running); OCCT carries it along the tangent chain.
+  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
+  TopExp::MapShapesAndAncestors(rounded, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
+  BRepFilletAPI_MakeChamfer chamfer(rounded);
+  for (int i = 1; i <= faces_of_edge.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(faces_of_edge.FindKey(i));
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
+    if (std::abs(a.Z() - 20) < 1e-9 && std::abs(b.Z() - 20) < 1e-9 && std::abs(a.Y() - 40) < 1e-9 &&
+        std::abs(b.Y() - 40) < 1e-9) {
+      chamfer.Add(4.0, 4.0, edge, TopoDS::Face(faces_of_edge.FindFromIndex(i).First()));
+    }
+  }
+  const TopoDS_Shape chamfered = chamfer.Shape();
+  const TopoDS_Shape pocket = BRepPrimAPI_MakeBox(gp_Pnt(8, 8, 15), 16.0, 10.0, 10.0).Shape();
+  return BRepAlgoAPI_Cut(chamfered, pocket).Shape();
 }
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }

@@ -17,6 +17,11 @@ namespace conform::test {
 // A 60 x 40 x 20 mm block at the origin with a 20 x 20 x 10 mm boss on top at (10..30, 10..30) and a through hole
 // of diameter 12 mm along z at (45, 20): 13 faces; inside the hole is outside the part.
 TopoDS_Shape box_with_boss_and_hole();
+// A 60 x 40 x 20 mm block at the origin whose four vertical edges are rounded with R10 fillets (tangent: the flat
+// sides meet the fillets without a crease), a 4 mm 45-degree chamfer round the top's rim (put on the edge along
+// y = 40, it follows the tangent fillets all the way round: the top's corners are arcs of R6) and a 16 x 10 mm pocket
+// 5 mm deep in the top at (8..24, 8..18): flat faces next to fillets and steps, as machined.
+TopoDS_Shape filleted_block();
 // Radius 15 mm, height 40 mm, axis z from the origin.
 TopoDS_Shape cylinder();
 // Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
