@@ -87,14 +87,22 @@ class AlignCommand : public Command {
                      std::to_string(std::lround(100.0 * kAlignAutoDistanceShare)) + "%" +
                      " of the reference's bounding-box diagonal");
     c.add_option("--overlap", options_.overlap,
-                 "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed");
+                 "Share of the scan that overlaps the reference, (0, 1]; the rest is trimmed; 0: estimated in every "
+                 "step from the pairs' distances (fractional ICP)");
     c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");
+    c.add_option("--pose-tolerance-mm", options_.pose_tolerance_mm,
+                 "The accuracy asked of the pose, mm: the largest predicted std of any scan point's displacement "
+                 "(from the residuals and the surface's constraint); a pose from --init pca/fpfh that misses it is "
+                 "refused (exit 1), one from a start you gave is 'check'; 0: a sixth of --tolerance when given, else "
+                 "the scan's own noise");
+    c.add_option("--tolerance", options_.tolerance_mm,
+                 "The inspection tolerance +-mm the pose serves (as compare --tolerance); sets the default "
+                 "--pose-tolerance-mm; 0: not stated");
     c.add_option("--free-tolerance-mm", options_.free_tolerance_mm,
-                 "The accuracy asked of the pose, mm: a motion whose predicted std (from the residuals and the "
-                 "surface's constraint) exceeds this along an axis is loose; a pose from --init pca/fpfh must "
-                 "reach it on every estimated motion, or it is refused (exit 1)");
+                 "A weak motion whose predicted std exceeds this along an axis, mm, is held at the start when the "
+                 "coarse stage found the fit unchanged along it (a tube's axis)");
     c.add_option("--free-tolerance-deg", options_.free_tolerance_deg,
-                 "The same about an axis, deg (also the accuracy a coarse-started pose must reach)");
+                 "The same about an axis, deg");
     c.add_option("--max-noise-ratio", options_.max_noise_ratio,
                  "Residuals more than this many times the scan's own noise: the pose is not trusted (exit 1); 0: "
                  "no check");

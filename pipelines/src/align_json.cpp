@@ -59,7 +59,9 @@ nlohmann::json verdict_json(const AlignVerdict& v) {
           {"expected_noise_mm", v.expected_noise_mm},
           {"fit_noise_mm", v.fit_noise_mm},
           {"noise_ratio", v.noise_ratio},
-          {"overlap", v.overlap}};
+          {"overlap", v.overlap},
+          {"pose_std_mm", v.pose_std_mm},
+          {"pose_tolerance_mm", v.pose_tolerance_mm}};
 }
 
 // Every coarse start and its score (kPca, kFpfh), with the pose it was probed at.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "conform/core/geometry.h"
+#include "conform/registration/degeneracy.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/surface_noise.h"
 
@@ -22,6 +23,12 @@ constexpr double kLowOverlapShare = 0.5;
 constexpr std::size_t kNoiseSamples = 2000;
 // The best coarse start's inlier share below this share of --overlap: the coarse pose is not on the reference.
 constexpr double kLowCoarseShare = 0.5;
+// A stated tolerance +-t asks a pose displacement std of t / 6: three std use at most half of the tolerance.
+constexpr double kToleranceStds = 6.0;
+// The asked displacement std never below 1 um (the ICP's noise floor): a noise-free scan still asks something.
+constexpr double kNoiseFloorMm = 1e-3;
+// The points the displacement std is evaluated at: an even stride of the scan (its extremes decide it).
+constexpr std::size_t kPoseStdPoints = 5000;
 const char* const kWhatToDo =
     "; give point pairs (markers, --init pairs:FILE) or a scan that covers more of the part's distinctive shape";
 
@@ -66,6 +73,14 @@ LooseMotion loosest(const DegeneracyReport& degeneracy) {
   return m;
 }
 
+// At most kPoseStdPoints of the scan (an even stride) moved into the reference frame.
+std::vector<Eigen::Vector3d> in_reference_frame(const std::vector<Eigen::Vector3d>& scan,
+                                                const Eigen::Isometry3d& T_ref_scan) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector3d& p : stride_downsample(scan, kPoseStdPoints)) out.push_back(T_ref_scan * p);
+  return out;
+}
+
 SurfaceNoiseOptions noise_options() {
   SurfaceNoiseOptions o;
   o.samples = kNoiseSamples;
@@ -99,6 +114,8 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   if (!icp.converged) no.push_back(std::string("ICP did not converge (") + to_string(icp.termination) + ")");
   const MultiStartResult& ranking = result.coarse.ranking;
   const Eigen::Vector3d centre = centroid(scan);
+  // What share of the scan should lie on the reference: the user's --overlap, or the fit's own estimate.
+  const double expected_overlap = options.overlap > 0.0 ? options.overlap : icp.inlier_fraction;
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
@@ -121,11 +138,12 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
                              best.inlier_share, 100.0 * closest->best_only_share) +
                       format("the scan (against %.1f%%) tells them apart", 100.0 * closest->only_share));
     }
-    if (best.inlier_share < kLowCoarseShare * options.overlap) {
+    if (best.inlier_share < kLowCoarseShare * expected_overlap) {
       no.push_back(format("the best coarse start has only %.0f%% of the scan within %.3g mm of the reference "
-                          "(expected overlap %.0f%%)",
-                          100.0 * best.inlier_share, result.coarse.inlier_distance_mm, 100.0 * options.overlap) +
-                   kWhatToDo + " (or set --overlap)");
+                          "(expected overlap %.0f%%",
+                          100.0 * best.inlier_share, result.coarse.inlier_distance_mm, 100.0 * expected_overlap) +
+                   (options.overlap > 0.0 ? ")" : ", the fit's own estimate)") + kWhatToDo +
+                   (options.overlap > 0.0 ? " (or set --overlap)" : ""));
     }
   }
   if (options.max_noise_ratio > 0.0 && v.noise_ratio > options.max_noise_ratio) {
@@ -135,7 +153,7 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
     check.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,
                            v.noise_ratio, v.expected_noise_mm));
   }
-  if (v.overlap < kLowOverlapShare * options.overlap) {
+  if (v.overlap < kLowOverlapShare * (options.overlap > 0.0 ? options.overlap : 1.0)) {
     check.push_back(format("only %.0f%% of the scan lies on the reference", 100.0 * v.overlap));
   }
   const bool coarse_start = options.init == AlignInit::kPca || options.init == AlignInit::kFpfh;
@@ -159,18 +177,28 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
       check.push_back(held);
     }
   }
-  const LooseMotion loose = loosest(icp.degeneracy);
-  if (loose.std_mm > options.free_tolerance_mm || loose.std_deg > options.free_tolerance_deg) {
-    const std::string known = format("the scan fixes the pose only to %.3g mm and %.3g deg (the largest predicted "
-                                     "std of its estimated motions; free tolerances %.3g mm, ",
-                                     loose.std_mm, loose.std_deg, options.free_tolerance_mm) +
-                              format("%.3g deg)", options.free_tolerance_deg);
+  // How well the scan fixes the pose, in mm at the part, against what is asked of it (align.h).
+  v.pose_std_mm = largest_displacement_std_mm(icp.degeneracy, in_reference_frame(scan, icp.T_ref_scan));
+  v.pose_tolerance_mm = options.pose_tolerance_mm > 0.0 ? options.pose_tolerance_mm
+                        : options.tolerance_mm > 0.0    ? options.tolerance_mm / kToleranceStds
+                                                        : std::max(v.expected_noise_mm, kNoiseFloorMm);
+  if (v.pose_std_mm > v.pose_tolerance_mm) {
+    const LooseMotion loose = loosest(icp.degeneracy);
+    const std::string known =
+        format("the scan fixes the pose only to %.3g mm at the part (the largest predicted std of a scan point's "
+               "displacement; %.3g mm and %.3g deg along and about an axis), ",
+               v.pose_std_mm, loose.std_mm, loose.std_deg) +
+        format(options.pose_tolerance_mm > 0.0 ? "against the asked %.3g mm"
+               : options.tolerance_mm > 0.0    ? "against %.3g mm, a sixth of the tolerance"
+                                               : "against the scan's own noise, %.3g mm",
+               v.pose_tolerance_mm);
     if (coarse_start) {
       // Estimated from a start a coarse search found: a fit that loose may sit in a neighbouring minimum (the
-      // sparse-walls and noisy matrix cases of issue 13: 1-2.6 mm off with residuals at the noise), and nothing
-      // measured that it does not.
-      no.push_back(known + ", not enough to confirm a coarse search's start; if that accuracy is enough, raise "
-                           "--free-tolerance-mm/--free-tolerance-deg, else give point pairs (--init pairs:FILE)");
+      // sparse-walls and noisy matrix cases: 1-2.6 mm off with residuals at the noise), and nothing measured that it
+      // does not.
+      no.push_back(known + ", not enough to confirm a coarse search's start; if that accuracy is enough, state it "
+                           "(--pose-tolerance-mm, or the inspection's --tolerance), else give point pairs "
+                           "(--init pairs:FILE)");
     } else {
       check.push_back(known);
     }

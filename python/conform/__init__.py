@@ -61,8 +61,8 @@ def align(scan, reference, **options):
 
     scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options as the CLI's flags:
     method ("" automatic, point-to-point, point-to-plane, point-to-surface, plane-to-plane), init (none, pca, fpfh,
-    pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, max_noise_ratio,
-    units, out_transform, out_aligned, report, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
+    pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, pose_tolerance_mm,
+    tolerance, max_noise_ratio, units, out_transform, out_aligned, report, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
     """
     return _result("align", _conform.align(scan, reference, **options))
 

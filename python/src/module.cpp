@@ -101,8 +101,9 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
 
 py::tuple job_align(const py::object& scan, const py::object& reference, const std::string& method,
                     const std::string& init, double max_distance, double overlap, int max_iterations,
-                    double free_tolerance_mm, double free_tolerance_deg, double max_noise_ratio,
-                    const std::string& units, const py::object& out_transform, const py::object& out_aligned,
+                    double free_tolerance_mm, double free_tolerance_deg, double pose_tolerance_mm, double tolerance,
+                    double max_noise_ratio, const std::string& units, const py::object& out_transform,
+                    const py::object& out_aligned,
                     const py::object& report, const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
   Inputs inputs;
@@ -117,6 +118,8 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   options.max_iterations = max_iterations;
   options.free_tolerance_mm = free_tolerance_mm;
   options.free_tolerance_deg = free_tolerance_deg;
+  options.pose_tolerance_mm = pose_tolerance_mm;
+  options.tolerance_mm = tolerance;
   options.max_noise_ratio = max_noise_ratio;
   options.out_transform_path = path_of(out_transform);
   options.out_aligned_path = path_of(out_aligned);
@@ -369,7 +372,8 @@ PYBIND11_MODULE(_conform, m) {
   m.def("align", &job_align, arg("scan"), arg("reference"), py::kw_only(), arg("method") = "", arg("init") = "none",
         arg("max_distance") = align.max_distance_mm, arg("overlap") = align.overlap,
         arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
-        arg("free_tolerance_deg") = align.free_tolerance_deg, arg("max_noise_ratio") = align.max_noise_ratio,
+        arg("free_tolerance_deg") = align.free_tolerance_deg, arg("pose_tolerance_mm") = align.pose_tolerance_mm,
+        arg("tolerance") = align.tolerance_mm, arg("max_noise_ratio") = align.max_noise_ratio,
         arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
         arg("report") = py::none(), arg("progress") = py::none());
   const ProgramOptions program;

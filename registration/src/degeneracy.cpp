@@ -249,4 +249,20 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
   return report;
 }
 
+double largest_displacement_std_mm(const DegeneracyReport& report, const std::vector<Eigen::Vector3d>& points) {
+  const double L = report.length_scale_mm;
+  double worst = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    double variance = 0.0;
+    for (const ConstraintDirection& d : report.eigen_directions) {
+      if (d.held) continue;
+      // The direction is a unit 6-vector in (rotation x L, translation): its coefficient's std from the two parts.
+      const double coefficient_variance = std::pow(d.std_rad * L, 2) + std::pow(d.std_mm, 2);
+      variance += coefficient_variance * (d.rotation.cross(p - report.centre) + d.translation).squaredNorm();
+    }
+    worst = std::max(worst, variance);
+  }
+  return std::sqrt(worst);
+}
+
 }  // namespace conform

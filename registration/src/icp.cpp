@@ -91,7 +91,10 @@ bool along_the_normal(IcpMethod method) {
 StepFigures evaluate(const std::vector<Pair>& pairs, const IcpOptions& options, double hold_noise_mm,
                      const Eigen::Vector3d& origin, double widen_kernel_to_mm = 0.0) {
   StepFigures f;
-  f.inliers = detail::select_inliers(pairs, options.overlap);
+  const double overlap = options.estimate_overlap
+                             ? detail::fractional_overlap(pairs, options.min_inlier_fraction, options.overlap_lambda)
+                             : options.overlap;
+  f.inliers = detail::select_inliers(pairs, overlap);
   f.weights = detail::robust_weights(pairs, f.inliers, options.kernel, options.min_kernel_scale_mm, &f.kernel_scale_mm,
                                      widen_kernel_to_mm);
   if (along_the_normal(options.method)) {

@@ -57,6 +57,7 @@ bool IcpOptions::IsValid(std::string* error) const {
                 ": must be > 0 (infinity for no limit)");
   }
   if (!(overlap > 0.0 && overlap <= 1.0)) return fail("overlap = " + std::to_string(overlap) + ": must be in (0, 1]");
+  if (!(overlap_lambda > 0.0) || !std::isfinite(overlap_lambda)) return fail("overlap_lambda must be finite and > 0");
   if (!(min_kernel_scale_mm > 0.0) || !std::isfinite(min_kernel_scale_mm)) {
     return fail("min_kernel_scale_mm must be finite and > 0");
   }

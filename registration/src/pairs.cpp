@@ -115,6 +115,32 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
   return inliers;
 }
 
+double fractional_overlap(const std::vector<Pair>& pairs, double min_fraction, double lambda) {
+  std::vector<double> squared;
+  squared.reserve(pairs.size());
+  for (const Pair& p : pairs) {
+    if (p.found) squared.push_back(p.distance * p.distance);
+  }
+  if (squared.empty()) return 0.0;
+  std::sort(squared.begin(), squared.end());
+  const double n = static_cast<double>(pairs.size());
+  const auto first = static_cast<std::size_t>(std::max(1.0, std::ceil(min_fraction * n)));
+  double sum = 0.0, best_score = std::numeric_limits<double>::infinity();
+  std::size_t best = squared.size();
+  for (std::size_t k = 1; k <= squared.size(); ++k) {
+    sum += squared[k - 1];
+    if (k < first) continue;
+    const double f = static_cast<double>(k) / n;
+    // The floor keeps exact (noise-free) distances from scoring 0 at every f: then the most pairs win.
+    const double score = std::sqrt(std::max(sum / static_cast<double>(k), 1e-24)) / std::pow(f, lambda);
+    if (score < best_score) {
+      best_score = score;
+      best = k;
+    }
+  }
+  return static_cast<double>(best) / n;
+}
+
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,
                                    RobustKernel kernel, double min_scale_mm, double* scale_mm, double widen_to_mm) {
   std::vector<double> weights(inliers.size(), 1.0);

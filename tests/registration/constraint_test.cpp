@@ -73,6 +73,32 @@ TEST(Constraint, PlaneCovarianceIsTheClosedForm) {
   EXPECT_EQ(strict.directions.size(), 2u);  // tx's std above the tolerance: held too
 }
 
+// The largest displacement std over points of the same plane: its estimated motions tz, rx, ry move a point at
+// (dx, dy) from the centroid by tz + rx dy - ry dx along z, so the std there is sigma sqrt(1/N + dy^2/syy +
+// dx^2/sxx) (independent: H is diagonal for the symmetric grid), largest at the corners; the held in-plane motions
+// do not count.
+TEST(Constraint, LargestDisplacementStdIsTheClosedFormOnAPlane) {
+  std::vector<Eigen::Vector3d> q, n;
+  double sxx = 0.0, syy = 0.0;
+  for (int i = -10; i <= 10; ++i) {
+    for (int j = -5; j <= 5; ++j) {
+      q.emplace_back(3.0 * i + 7.0, 2.0 * j - 4.0, 10.0);
+      n.emplace_back(0.0, 0.0, 1.0);
+      sxx += 9.0 * i * i;
+      syy += 4.0 * j * j;
+    }
+  }
+  const double sigma = 0.005, count = static_cast<double>(q.size());
+  const DegeneracyReport r = analyze_constraint(plane_normal_matrix(q, n), sigma, 0.02, 0.01 * kDeg);
+  const auto closed = [&](double dx, double dy) {
+    return sigma * std::sqrt(1.0 / count + dy * dy / syy + dx * dx / sxx);
+  };
+  EXPECT_NEAR(largest_displacement_std_mm(r, {Eigen::Vector3d(7.0, -4.0, 10.0)}), closed(0, 0), 1e-12);
+  EXPECT_NEAR(largest_displacement_std_mm(r, q), closed(30, 10), 1e-12);
+  EXPECT_NEAR(largest_displacement_std_mm(r, {Eigen::Vector3d(107.0, -4.0, 10.0)}), closed(100, 0), 1e-12);
+  EXPECT_EQ(largest_displacement_std_mm(r, {}), 0.0);
+}
+
 // The cluster-robust sandwich on the plane above, tz alone free: residuals +tau and -tau over alternate blocks of m
 // points (a bias shared by each block) give g_b = +-m tau, so var(tz) = K/(K-1) sum_b g_b^2 / N^2 = tau^2 / (K-1),
 // far above sigma^2 / N; the same residuals in a pattern that alternates within each block cancel in every g_b and

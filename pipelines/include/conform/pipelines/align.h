@@ -55,7 +55,9 @@ struct AlignOptions {
   std::string pairs_path;
 
   double max_distance_mm = 0.0;  // ICP's maximum pair distance; 0: kAlignAutoDistanceShare of the reference's box diagonal
-  double overlap = 1.0;          // trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]
+  // Trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]; 0: estimated from the pairs' distances
+  // in every step (fractional ICP, registration/icp_options.h estimate_overlap).
+  double overlap = 0.0;
   int max_iterations = 50;
   RobustKernel kernel = RobustKernel::kHuber;
   double scan_voxel_mm = 0.0;            // > 0: the scan thinned to one point per voxel before ICP
@@ -64,10 +66,19 @@ struct AlignOptions {
   // unit mix-up (an error suggesting --units); 0: no check.
   double max_size_ratio = 20.0;
   std::uint64_t seed = 1;  // FPFH's RANSAC
-  // A motion is held at the start when its predicted standard deviation (from the residuals' noise and the
-  // constraint the surface gives, registration/degeneracy.h) exceeds this along (mm) or about (deg) an axis.
+  // A weak motion is held at the start when its predicted standard deviation (from the residuals' noise and the
+  // constraint the surface gives, registration/degeneracy.h) exceeds this along (mm) or about (deg) an axis and the
+  // start is known better (the coarse stage found the fit unchanged along it: a tube's axis).
   double free_tolerance_mm = 0.02;
   double free_tolerance_deg = 0.01;
+  // The accuracy asked of the pose: the largest predicted displacement std of any scan point
+  // (registration/degeneracy.h, largest_displacement_std_mm), mm. 0: from the data and the job: tolerance_mm / 6
+  // when the inspection tolerance is stated (three std use at most half of it), else the scan's own noise (the pose
+  // moves no point by more than one reading's noise). A pose from --init pca/fpfh that misses it is refused, one from
+  // a start the user gave is "check".
+  double pose_tolerance_mm = 0.0;
+  // The inspection tolerance +-t the pose serves (what compare --tolerance will check), mm; 0: not stated.
+  double tolerance_mm = 0.0;
   // The fit's residual noise more than this many times the scan's own (plus the reference cloud's) noise: the pose
   // is not consistent with the data (a wrong pose, or a part far from its reference): not trusted, exit 1. Above 2
   // the verdict is "check". 0: no check. Loose because the local noise estimate misses sampling effects: a LiDAR
@@ -100,6 +111,8 @@ struct AlignVerdict {
   double fit_noise_mm = 0.0;         // the residuals' robust std at the result (icp.degeneracy.noise_mm)
   double noise_ratio = 0.0;          // fit / expected
   double overlap = 0.0;              // the share of the scan within the maximum distance and kept (inlier fraction)
+  double pose_std_mm = 0.0;          // the largest predicted displacement std of a scan point (estimated motions)
+  double pose_tolerance_mm = 0.0;    // what was asked of it (AlignOptions::pose_tolerance_mm, resolved)
   std::vector<std::string> reasons;  // why not kYes, one sentence each
   std::string summary;               // one line: whether to trust the pose and why
 };

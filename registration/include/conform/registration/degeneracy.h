@@ -130,4 +130,13 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
                                     double tolerance_rad, const FreeDof& free_dof = {}, double min_relative = 0.0,
                                     double start_std_mm = 0.0, double start_std_rad = 0.0);
 
+// How far the estimated pose may move the scan: the largest over `points` (reference frame, mm) of the predicted
+// displacement std sqrt(sum_i var_i |r_i x (p - c) + t_i|^2), over the eigen-directions i that were estimated (not
+// held) by analyze_constraint, r_i and t_i a direction's rotation (rad) and translation (mm) per unit, var_i its
+// variance, c the report's centre: the root of the trace of the displacement's covariance where the directions are
+// independent, an upper bound of its largest directional std. One figure for "how well does the scan fix the pose",
+// in mm at the part, whatever the part's size (a fixed angle asks 100 times more of a 10 m part than of a 10 cm
+// one). Held motions are reported apart (directions). 0 for no points or a report without eigen-directions.
+double largest_displacement_std_mm(const DegeneracyReport& report, const std::vector<Eigen::Vector3d>& points);
+
 }  // namespace conform

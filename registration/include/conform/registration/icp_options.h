@@ -67,6 +67,12 @@ struct IcpOptions {
   // Trimmed ICP (Chetverikov et al. 2002; CloudCompare's "final overlap"): only this fraction of the scan points,
   // those with the smallest distances, takes part in each step. In (0, 1]; 1 keeps every pair within the distance.
   double overlap = 1.0;
+  // Fractional ICP (Phillips, Liu & Tomasi 2007): each step estimates the overlap from the pairs' distances, the
+  // share f >= min_inlier_fraction minimising RMSD(f) / f^overlap_lambda, and trims to it; `overlap` is then unused.
+  // For a scan whose overlap with the reference is not known: the pairs beyond it (a room scan's other half) no longer
+  // pull a right start away.
+  bool estimate_overlap = false;
+  double overlap_lambda = 3.0;  // their recommended exponent; larger keeps more pairs
   RobustKernel kernel = RobustKernel::kHuber;
   // The kernel's scale never drops below this (mm), so that a noise-free fit does not weight its last residuals of
   // 1e-12 mm against each other.
