@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 #include <future>
+#include <limits>
 #include <utility>
 
 #include <omp.h>
@@ -27,12 +28,17 @@ std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const Ali
   return stride_downsample(points, options.max_scan_points);
 }
 
-IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm) {
+// reference_is_cloud: with the overlap left to the data (--overlap 0), a cloud reference (another scan: partial
+// overlap is the rule) has it estimated in every step; a mesh (the nominal part, which the scan lies on) keeps every
+// pair, as trimming even 1-2 % of a plate's worst-fitting points (its steep walls, which fix its in-plane position)
+// moved the fit 0.05-0.1 mm at 0.02 mm of noise (AlignMatrixBossPlateMesh).
+IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm,
+                        bool reference_is_cloud) {
   IcpOptions icp;
   icp.method = method;
   icp.max_correspondence_distance_mm = max_distance_mm;
-  icp.estimate_overlap = options.overlap == 0.0;
-  icp.overlap = icp.estimate_overlap ? 1.0 : options.overlap;
+  icp.estimate_overlap = options.overlap == 0.0 && reference_is_cloud;
+  icp.overlap = options.overlap > 0.0 ? options.overlap : 1.0;
   icp.kernel = options.kernel;
   icp.max_iterations = options.max_iterations;
   icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, icp.overlap);
@@ -40,6 +46,33 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
   icp.free_tolerance_rad = options.free_tolerance_deg * M_PI / 180.0;
   icp.progress = options.progress;
   return icp;
+}
+
+// Fractional ICP's objective at a fit (Phillips et al. 2007, Eq. (3)): its inliers' RMS over their share^lambda.
+double fractional_objective(const IcpResult& r, double lambda) {
+  return r.inlier_fraction > 0.0 ? r.rms_mm / std::pow(r.inlier_fraction, lambda) : std::numeric_limits<double>::infinity();
+}
+
+// Fine ICP from `start`. With the overlap estimated and a start the user gave (which may be rough): trimmed to the
+// estimated overlap, ICP keeps a right start that half the scan does not overlap, but from a rough start it can stay
+// where it began (a LiDAR pair started 0.5 m off); every pair kept, it finds the basin from a rough start, but pairs
+// beyond the overlap pull a right start away. So both: the estimated-overlap fit from the start, and from where the
+// fit with every pair converged; the lower fractional objective (one criterion for both) wins.
+IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                   const Eigen::Isometry3d& start, const IcpOptions& fine, bool rough_start) {
+  IcpResult direct = icp(scan, reference, start, fine);
+  if (!fine.estimate_overlap || !rough_start) return direct;
+  IcpOptions every_pair = fine;
+  every_pair.estimate_overlap = false;
+  every_pair.overlap = 1.0;
+  every_pair.progress = nullptr;
+  const IcpResult pulled = icp(scan, reference, start, every_pair);
+  IcpOptions quiet = fine;
+  quiet.progress = nullptr;
+  IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
+  const bool via_better = via.converged && (!direct.converged || fractional_objective(via, fine.overlap_lambda) <
+                                                                     fractional_objective(direct, fine.overlap_lambda));
+  return via_better ? via : direct;
 }
 
 // Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
@@ -63,10 +96,9 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   coarse.method = options.init == AlignInit::kPca ? CoarseMethod::kPca : CoarseMethod::kFpfh;
   coarse.fpfh.seed = options.seed;
   // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
-  coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm);
   // The probes find the basin: every pair pulls (a start a few mm off slides home only if the part of the scan that
   // is off the surface is not trimmed away). The estimated overlap is the fine fit's, from the winner's pose.
-  coarse.multi_start.probe.estimate_overlap = false;
+  coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm, false);
   coarse.multi_start.probe.max_iterations = 15;
   coarse.multi_start.probe.progress = nullptr;
   coarse.progress = options.progress;
@@ -246,11 +278,11 @@ AlignResult run_align(const AlignOptions& options) {
   result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
                                                          : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, reference_mesh, options, result.max_distance_mm, result);
-  IcpOptions fine = fine_options(options, result.method, result.max_distance_mm);
+  IcpOptions fine = fine_options(options, result.method, result.max_distance_mm, !reference_mesh.has_faces());
   // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's
   // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
   if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;
-  result.icp = icp(scan, reference, result.T_start, fine);
+  result.icp = fine_fit(scan, reference, result.T_start, fine, options.init == AlignInit::kNone);
   result.verdict = detail::judge_alignment(scan, reference, options, result);
   if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
   if (options.keep_geometry) {

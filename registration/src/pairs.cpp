@@ -115,6 +115,10 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
   return inliers;
 }
 
+namespace {
+constexpr double kFractionalMinCut = 3.0;
+}  // namespace
+
 double fractional_overlap(const std::vector<Pair>& pairs, double min_fraction, double lambda) {
   std::vector<double> squared;
   squared.reserve(pairs.size());
@@ -138,7 +142,13 @@ double fractional_overlap(const std::vector<Pair>& pairs, double min_fraction, d
       best = k;
     }
   }
-  return static_cast<double>(best) / n;
+  // Never trim pairs within kFractionalMinCut robust standard deviations of the kept distances: FRMSD alone trims
+  // the noise's own tail; pairs off the overlap are many noise widths away.
+  const double sigma = 1.4826 * std::sqrt(squared[(best - 1) / 2]);
+  const double cut = std::max(std::sqrt(squared[best - 1]), kFractionalMinCut * sigma);
+  const auto kept = static_cast<std::size_t>(std::upper_bound(squared.begin(), squared.end(), cut * cut) -
+                                             squared.begin());
+  return static_cast<double>(std::max(best, kept)) / n;
 }
 
 std::vector<double> robust_weights(const std::vector<Pair>& pairs, const std::vector<std::size_t>& inliers,

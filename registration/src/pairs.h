@@ -49,7 +49,9 @@ std::vector<std::size_t> select_inliers(const std::vector<Pair>& pairs, double o
 // Fractional ICP's overlap (Phillips, Liu & Tomasi 2007, Eq. (3)): the share f of the scan's N points, those with the
 // smallest distances, that minimises FRMSD(f) = RMSD(f) / f^lambda, RMSD(f) the RMS distance of those f N pairs; f at
 // least min_fraction (of N). Pairs beyond the overlap are far and few near it grow RMSD faster than f^lambda pays for
-// them; a scan that lies wholly on the reference keeps (nearly) all. 0 when no pair was found.
+// them; a scan that lies wholly on the reference keeps (nearly) all. Then widened to keep every pair within 3 robust
+// standard deviations (1.4826 x the median distance of those kept): the noise's own tail is not trimmed. 0 when no
+// pair was found.
 double fractional_overlap(const std::vector<Pair>& pairs, double min_fraction, double lambda);
 
 // Robust weights of the inliers' residuals and their scale (0 for kNone): scale = max(1.4826 median |r|, floor).

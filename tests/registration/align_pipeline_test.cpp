@@ -39,7 +39,8 @@ Files write_part(const test::TempDir& dir, test::PartKind kind, double angle_deg
 }
 
 TEST(AlignPipeline, RecoversTheRealSmallGicpPairInMetres) {
-  const std::string data = std::string(CONFORM_SHARED_DATA_DIR) + "/real/small_gicp/";
+  // Bundled under datasets/real (MIT, with its notice), so that a fresh clone runs it.
+  const std::string data = std::string(CONFORM_SOURCE_DIR) + "/datasets/real/small_gicp/";
   AlignOptions options;
   options.scan_path = data + "source.ply";
   options.reference_path = data + "target.ply";
