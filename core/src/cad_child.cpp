@@ -122,6 +122,12 @@ bool mentions_memory(const char* text) { return text != nullptr && std::strstr(t
 
 // Never returns. Everything the parent learns comes through the pipe; the exit status only says whether it got there.
 [[noreturn]] void child_main(int fd, pid_t parent, conform_cad_request request, const CadReadOptions& options) {
+  // Only stdin, stdout, stderr and the pipe stay open (as fd 3): another thread's read_cad in the parent would
+  // otherwise see the end of its own pipe only when this child exits, and OpenCASCADE has no business with the
+  // parent's files.
+  if (fd != 3 && ::dup2(fd, 3) < 0) ::_exit(5);
+  fd = 3;
+  ::close_range(4, ~0u, 0);
   g_pipe = fd;
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive a parent that was killed
   if (::getppid() != parent) ::_exit(3);
