@@ -73,9 +73,7 @@ std::string entity_text(const conform_cad_request& request, const std::string& l
   for (std::size_t at = bytes.find(label); at != std::string::npos; at = bytes.find(label, at + 1)) {
     std::size_t after = at + label.size();
     while (after < bytes.size() && (bytes[after] == ' ' || bytes[after] == '\t')) ++after;
-    const bool defines = after < bytes.size() && bytes[after] == '=' &&
-                         (at + label.size() >= bytes.size() || !std::isdigit(static_cast<unsigned char>(bytes[at + label.size()])));
-    if (!defines) continue;
+    if (after >= bytes.size() || bytes[after] != '=') continue;  // a reference to it, or a longer label (#123)
     const std::size_t end = std::min({bytes.find(';', at), at + 120, bytes.size()});
     std::string text = bytes.substr(at, end - at + (end < bytes.size() && bytes[end] == ';' ? 1 : 0));
     for (char& c : text) c = (c == '\n' || c == '\r') ? ' ' : c;

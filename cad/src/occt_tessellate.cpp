@@ -83,9 +83,9 @@ conform_cad_body add_body(const Body& body, std::size_t max_triangles, double de
       ++record.failed_faces;
       continue;
     }
-    if (out.triangles.size() / 3 + static_cast<std::size_t>(mesh->NbTriangles()) > max_triangles) {
-      over_budget(static_cast<double>(out.triangles.size() / 3 + static_cast<std::size_t>(mesh->NbTriangles())), "came to more than",
-                  max_triangles, deflection_mm);
+    const std::size_t so_far = out.triangles.size() / 3 + static_cast<std::size_t>(mesh->NbTriangles());
+    if (so_far > max_triangles) {
+      over_budget(static_cast<double>(so_far), "came to more than", max_triangles, deflection_mm);
     }
     const gp_Trsf placement = location.Transformation();
     const std::size_t base = out.vertices.size() / 3;

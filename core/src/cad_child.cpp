@@ -26,9 +26,9 @@ namespace {
 
 // ---- the child ----------------------------------------------------------------------------------------------------
 
-int g_pipe = -1;                 // the child's write end, for the signal handler
-std::uint64_t g_limit_kb = 0;    // the child's address-space limit
-char g_status[8192];             // /proc/self/status, read inside the signal handler (no allocation there)
+int g_pipe = -1;                          // the child's write end, for the signal handler
+std::uint64_t g_limit_kb = 0;             // the child's address-space limit
+char g_status[8192];                      // /proc/self/status, read inside the signal handler (no allocation there)
 alignas(16) char g_alt_stack[64 * 1024];  // a stack overflow's SIGSEGV needs a stack of its own
 
 bool write_all(int fd, const char* data, std::size_t size) {
@@ -60,8 +60,9 @@ std::uint64_t vm_peak_kb() {
   return kb;
 }
 
-// Tells the parent the signal and how far the peak address space stayed below the limit (so that it can tell a crash from an allocation that failed
-// at the memory limit, e.g. OpenCASCADE aborting in a destructor), then dies of the same signal (SA_RESETHAND).
+// Tells the parent the signal and how far the peak address space stayed below the limit (so that it can tell a crash
+// from an allocation that failed at the memory limit, e.g. OpenCASCADE aborting in a destructor), then dies of the same
+// signal (SA_RESETHAND).
 void on_fatal_signal(int signal_number) {
   char note[kCadWireHeader + 12];
   const std::uint64_t size = 12;
@@ -306,7 +307,8 @@ std::string memory_message(const std::string& path, const CadReadOptions& option
 CadWireResult read_cad_in_child(const std::string& path, const conform_cad_request& request,
                                 const CadReadOptions& options) {
   int ends[2];
-  if (::pipe2(ends, O_CLOEXEC) != 0) throw Error(path + ": cannot create a pipe for the CAD reader: " + std::strerror(errno));
+  if (::pipe2(ends, O_CLOEXEC) != 0)
+    throw Error(path + ": cannot create a pipe for the CAD reader: " + std::strerror(errno));
   Fd read_end(ends[0]), write_end(ends[1]);
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -344,8 +346,8 @@ CadWireResult read_cad_in_child(const std::string& path, const conform_cad_reque
     throw Error(path + ": " + got.error);
   }
   if (!got.has_result) {
-    const std::string how = status == -1 ? "its exit status was lost"
-                                         : "it exited with status " + std::to_string(WEXITSTATUS(status));
+    const std::string how =
+        status == -1 ? "its exit status was lost" : "it exited with status " + std::to_string(WEXITSTATUS(status));
     throw Error(path + ": the CAD reader ended without a result (" + how + ")");
   }
   CadWireResult out;

@@ -133,7 +133,8 @@ bool decode_cad_result(const char* payload, std::size_t size, std::size_t max_tr
   }
   if (!in.take(&triangle_count)) return fail(why, "a truncated triangle count");
   if (triangle_count > max_triangles) {
-    return fail(why, std::to_string(triangle_count) + " triangles, over the budget of " + std::to_string(max_triangles));
+    return fail(why,
+                std::to_string(triangle_count) + " triangles, over the budget of " + std::to_string(max_triangles));
   }
   const char* triangles = in.take_array(triangle_count, 3 * sizeof(std::int32_t));
   if (triangles == nullptr) return fail(why, "more triangles than bytes");

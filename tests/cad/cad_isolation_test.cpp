@@ -140,8 +140,8 @@ TEST(CadIsolation, TheTriangleBudgetRefusesATenMetreSphereBeforeMeshing) {
 TEST(CadIsolation, TheEstimateIsWithinAFactorOfThreeOfTheRealCount) {
   test::TempDir dir;
   const std::pair<const char*, TopoDS_Shape> parts[] = {{"sphere.step", BRepPrimAPI_MakeSphere(20.0).Shape()},
-                                                         {"torus.step", test::torus()},
-                                                         {"cylinder.step", test::cylinder()}};
+                                                        {"torus.step", test::torus()},
+                                                        {"cylinder.step", test::cylinder()}};
   for (const auto& [name, shape] : parts) {
     const std::string path = dir.file(name);
     test::write_cad(shape, path, CadFormat::kStep, "MM");
