@@ -122,7 +122,13 @@ void send_progress(void* /*context*/, const char* stage, double fraction) {
 bool mentions_memory(const char* text) { return text != nullptr && std::strstr(text, "memory") != nullptr; }
 
 // Never returns. Everything the parent learns comes through the pipe; the exit status only says whether it got there.
-[[noreturn]] void child_main(int fd, pid_t parent, conform_cad_request request, const CadReadOptions& options) {
+struct PluginFunctions {
+  conform_cad_read_fn read;
+  conform_cad_free_fn free_result;
+};
+
+[[noreturn]] void child_main(int fd, pid_t parent, conform_cad_request request, const CadReadOptions& options,
+                             PluginFunctions plugin) {
   // Only stdin, stdout, stderr and the pipe stay open (as fd 3): another thread's read_cad in the parent would
   // otherwise see the end of its own pipe only when this child exits, and OpenCASCADE has no business with the
   // parent's files.
@@ -138,13 +144,10 @@ bool mentions_memory(const char* text) { return text != nullptr && std::strstr(t
   set_limits(options, &limit_bytes);
   std::string out;
   try {
-    const Plugin& plugin = Plugin::load("conform_cad");
-    auto* read = plugin.symbol<int(const conform_cad_request*, conform_cad_result*)>("conform_cad_read");
-    auto* free_result = plugin.symbol<void(conform_cad_result*)>("conform_cad_free");
     request.progress = send_progress;
     request.progress_context = nullptr;
     conform_cad_result result{};
-    if (read(&request, &result) == 0) {
+    if (plugin.read(&request, &result) == 0) {
       out = cad_result_message(result);
     } else {
       const char* text = result.error != nullptr ? result.error : "the CAD plugin failed without a reason";
@@ -152,7 +155,7 @@ bool mentions_memory(const char* text) { return text != nullptr && std::strstr(t
       const bool at_limit = vm_peak_kb() * 1024 + (64u << 20) >= limit_bytes;
       out = cad_error_message(mentions_memory(text) || at_limit ? CadChildError::kMemory : CadChildError::kRead, text);
     }
-    free_result(&result);
+    plugin.free_result(&result);
   } catch (const std::bad_alloc&) {
     out = cad_error_message(CadChildError::kMemory, "out of memory");
   } catch (const std::exception& e) {
@@ -306,6 +309,14 @@ std::string memory_message(const std::string& path, const CadReadOptions& option
 
 CadWireResult read_cad_in_child(const std::string& path, const conform_cad_request& request,
                                 const CadReadOptions& options) {
+  // Loaded (once per process) and resolved here, before the fork: the child inherits the mapping and takes no lock
+  // and no loader call of its own, and a process reading many files loads OpenCASCADE's libraries once, not per file
+  // (90-136 ms each, docs/cad.md). Loading runs only OpenCASCADE's static initialisers in this process, never its
+  // reading code.
+  const Plugin& loaded = Plugin::load("conform_cad");
+  const PluginFunctions plugin{
+      loaded.symbol<int(const conform_cad_request*, conform_cad_result*)>("conform_cad_read"),
+      loaded.symbol<void(conform_cad_result*)>("conform_cad_free")};
   int ends[2];
   if (::pipe2(ends, O_CLOEXEC) != 0)
     throw Error(path + ": cannot create a pipe for the CAD reader: " + std::strerror(errno));
@@ -315,7 +326,7 @@ CadWireResult read_cad_in_child(const std::string& path, const conform_cad_reque
   if (pid < 0) throw Error(path + ": cannot start the CAD reader process: " + std::strerror(errno));
   if (pid == 0) {
     ::close(ends[0]);
-    child_main(ends[1], parent, request, options);
+    child_main(ends[1], parent, request, options, plugin);
   }
   Child child(pid);
   write_end.reset();  // the parent sees end of file when the child's end closes

@@ -8,12 +8,13 @@
 // Why fork without exec: the child needs nothing but libc, libstdc++ and the plugin, and the request is already in
 // memory; an exec would need a helper executable found at run time and the file's bytes sent over. fork() in a
 // process that may have threads (OpenMP, Python, Dask) gives a child with one thread and every other thread's locks
-// as they were. glibc's fork resets malloc's arenas and the dynamic loader's lock for the child, which is what the
-// child uses (malloc, dlopen of the plugin, OpenCASCADE's allocator on malloc); it never touches OpenMP, Python or
-// any lock of conform's other than Plugin::load's, which the parent never takes for the cad plugin (only children
-// load it). The same pattern (fork, then dlopen and malloc in the child) is what multiprocessing's "fork" start and
-// many crash-isolating test runners rely on. The child ends with _exit(): no atexit handler, no stdio flush of the
-// parent's buffers, no destructor of state it shares with the parent.
+// as they were. The parent therefore loads the plugin and resolves its two functions before forking (the first CAD
+// read of the process; conform --help still loads nothing): the child makes no loader call and takes no lock of
+// conform's. What it does use is malloc (OpenCASCADE's allocator too), whose arenas glibc's fork resets for the child,
+// and the plugin's own code; it never touches OpenMP, Python or Dask. The same pattern (fork, then malloc and library
+// code in the child) is what multiprocessing's "fork" start and crash-isolating test runners rely on. The child ends
+// with _exit(): no atexit handler, no stdio flush of the parent's buffers, no destructor of state it shares with the
+// parent.
 
 #include <cstddef>
 #include <string>

@@ -1,5 +1,5 @@
 // CAD files through the cad plugin: the file is checked here (a regular file, the format's signature) before the
-// plugin, and OpenCASCADE behind it, is loaded at all, and then only in a child process (cad_child.h).
+// plugin, and OpenCASCADE behind it, is loaded at all; OpenCASCADE then reads only in a child process (cad_child.h).
 
 #include <algorithm>
 #include <cctype>

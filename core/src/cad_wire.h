@@ -25,7 +25,7 @@ namespace conform::detail {
 enum class CadChildError : std::uint8_t {
   kRead = 0,    // the plugin's reason about the file (without the path)
   kMemory = 1,  // out of memory under the child's limit
-  kLoad = 2,    // the plugin did not load: the message stands alone
+  kLoad = 2,    // any other exception in the child: the message stands alone
 };
 
 constexpr std::size_t kCadWireHeader = 9;
