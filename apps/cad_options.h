@@ -13,7 +13,9 @@
 
 namespace conform::app {
 
-// --cad-deflection (mm), --cad-angle-deg and --cad-save-mesh (declare cad.save_mesh_path as an output). The command sets cad.progress (stages "read CAD", "tessellate CAD").
+// --cad-deflection (mm), --cad-angle-deg, the reader's limits (--cad-timeout s, --cad-memory-mib,
+// --cad-max-triangles) and --cad-save-mesh (declare cad.save_mesh_path as an output). The command sets cad.progress
+// (stages "read CAD", "tessellate CAD").
 void add_cad_options(CLI::App& command, CadReadOptions& cad);
 
 // "cad           part.step: STEP in millimetre (x1 to mm), 1 bodies (1 solids), 12 faces -> 468 triangles ..."

@@ -53,7 +53,8 @@ extern "C" int conform_cad_read(const conform_cad_request* request, conform_cad_
     const conform::cad::ProgressSink progress{request->progress, request->progress_context};
     const conform::cad::ReadShape read = conform::cad::read_shape(*request, progress);
     const conform::cad::Tessellation t =
-        conform::cad::tessellate(read.shape, request->deflection_mm, request->angular_deflection_rad, progress);
+        conform::cad::tessellate(read.shape, request->deflection_mm, request->angular_deflection_rad,
+                                 request->max_triangles, progress);
     fill(read, t, result);
     return 0;
   } catch (const Standard_Failure& e) {

@@ -32,6 +32,16 @@ struct ReadShape {
 // or holds no geometry.
 ReadShape read_shape(const conform_cad_request& request, const ProgressSink& progress);
 
+// BRepMesh's triangle count, estimated before meshing from each face's area and curvature (occt_budget.cpp).
+struct TriangleEstimate {
+  double triangles = 0.0;     // over the faces visited
+  double largest_face = 0.0;  // the most any one face needs
+  std::size_t faces = 0;      // faces visited
+  bool complete = true;       // false: faces were left once over max_triangles (triangles is then a lower bound)
+};
+TriangleEstimate estimate_triangles(const TopoDS_Shape& shape, double deflection_mm, double angle_rad,
+                                    std::size_t max_triangles);
+
 struct Tessellation {
   std::vector<double> vertices;     // x y z, mm
   std::vector<std::int32_t> triangles;
@@ -39,8 +49,9 @@ struct Tessellation {
   std::vector<std::string> warnings;
 };
 
-// Throws std::runtime_error when the shape has no faces or no face could be tessellated.
+// Throws std::runtime_error when the shape has no faces, no face could be tessellated, or the tessellation is
+// estimated (before meshing) or found to need more than max_triangles.
 Tessellation tessellate(const TopoDS_Shape& shape, double deflection_mm, double angular_deflection_rad,
-                        const ProgressSink& progress);
+                        std::size_t max_triangles, const ProgressSink& progress);
 
 }  // namespace conform::cad

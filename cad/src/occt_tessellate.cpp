@@ -2,6 +2,7 @@
 // applied, faces wound by their orientation, and each solid's winding checked by the sign of its enclosed volume.
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -50,8 +51,25 @@ std::vector<Body> bodies_of(const TopoDS_Shape& shape) {
   return bodies;
 }
 
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+// `how`: "would need about" (the estimate, all faces), "would need at least" (the estimate, stopped early), "came to
+// more than" (the mesher's own count).
+[[noreturn]] void over_budget(double triangles, const char* how, std::size_t max_triangles, double deflection_mm) {
+  // Curved faces need triangles in proportion to 1 / deflection (h^2 ~ d R): the deflection that fits, roughly.
+  const double fits_mm = deflection_mm * triangles / static_cast<double>(max_triangles) * 1.2;
+  throw std::runtime_error("its tessellation at deflection " + number(deflection_mm) + " mm " + how + " " +
+                           number(triangles) + " triangles, over the budget of " +
+                           std::to_string(max_triangles) + ": use a coarser --cad-deflection (about " +
+                           number(fits_mm) + " mm would fit) or raise --cad-max-triangles");
+}
+
 // Appends the body's faces to `out`; returns its record (volume from the divergence theorem, about its first vertex).
-conform_cad_body add_body(const Body& body, Tessellation& out) {
+conform_cad_body add_body(const Body& body, std::size_t max_triangles, double deflection_mm, Tessellation& out) {
   conform_cad_body record{};
   record.kind = body.kind;
   const std::size_t first_vertex = out.vertices.size() / 3;
@@ -64,6 +82,10 @@ conform_cad_body add_body(const Body& body, Tessellation& out) {
     if (mesh.IsNull() || mesh->NbTriangles() == 0) {
       ++record.failed_faces;
       continue;
+    }
+    const std::size_t so_far = out.triangles.size() / 3 + static_cast<std::size_t>(mesh->NbTriangles());
+    if (so_far > max_triangles) {
+      over_budget(static_cast<double>(so_far), "came to more than", max_triangles, deflection_mm);
     }
     const gp_Trsf placement = location.Transformation();
     const std::size_t base = out.vertices.size() / 3;
@@ -117,10 +139,15 @@ conform_cad_body add_body(const Body& body, Tessellation& out) {
 }  // namespace
 
 Tessellation tessellate(const TopoDS_Shape& shape, double deflection_mm, double angular_deflection_rad,
-                        const ProgressSink& progress) {
+                        std::size_t max_triangles, const ProgressSink& progress) {
   const std::vector<Body> bodies = bodies_of(shape);
   if (bodies.empty()) throw std::runtime_error("it holds no solids, shells or faces (nothing to compare against)");
   progress("tessellate CAD", 0.0);
+  const TriangleEstimate estimate = estimate_triangles(shape, deflection_mm, angular_deflection_rad, max_triangles);
+  if (!estimate.complete || estimate.triangles > static_cast<double>(max_triangles)) {
+    over_budget(estimate.triangles, estimate.complete ? "would need about" : "would need at least", max_triangles,
+                deflection_mm);
+  }
   IMeshTools_Parameters parameters;
   parameters.Deflection = deflection_mm;
   parameters.Angle = angular_deflection_rad;
@@ -133,7 +160,7 @@ Tessellation tessellate(const TopoDS_Shape& shape, double deflection_mm, double 
   Tessellation out;
   std::size_t faces = 0, failed = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    out.bodies.push_back(add_body(bodies[i], out));
+    out.bodies.push_back(add_body(bodies[i], max_triangles, deflection_mm, out));
     const conform_cad_body& b = out.bodies.back();
     faces += b.faces;
     failed += b.failed_faces;

@@ -1,5 +1,5 @@
 // CAD files through the cad plugin: the file is checked here (a regular file, the format's signature) before the
-// plugin, and OpenCASCADE behind it, is loaded at all.
+// plugin, and OpenCASCADE behind it, is loaded at all; OpenCASCADE then reads only in a child process (cad_child.h).
 
 #include <algorithm>
 #include <cctype>
@@ -10,13 +10,13 @@
 #include <utility>
 #include <vector>
 
+#include "cad_child.h"
 #include "conform/core/cad.h"
 #include "conform/core/cad_plugin_abi.h"
 #include "conform/core/error.h"
 #include "conform/core/input_file.h"
 #include "conform/core/io.h"
 #include "conform/core/mesh_weld.h"
-#include "conform/core/plugin.h"
 
 namespace conform {
 
@@ -39,35 +39,11 @@ bool looks_like_iges(const std::string& bytes) {
   return (section == 'S' || section == 'F' || section == 'C') && (newline == std::string::npos || newline >= 72);
 }
 
-struct ResultGuard {
-  conform_cad_free_fn free_result;
-  conform_cad_result* result;
-  ~ResultGuard() { free_result(result); }
-};
-
-void forward_progress(void* context, const char* stage, double fraction) {
-  const ProgressFn& progress = *static_cast<const ProgressFn*>(context);
-  report(progress, stage, fraction);
-}
-
-std::string trimmed_unit(const char* unit) {
-  std::string out(unit, strnlen(unit, sizeof(conform_cad_result::file_unit)));
+std::string trimmed_unit(const std::string& unit) {
+  std::string out = unit.substr(0, std::min(unit.find('\0'), sizeof(conform_cad_result::file_unit)));
   while (!out.empty() && (out.back() == ' ' || out.back() == '\'')) out.pop_back();
   while (!out.empty() && (out.front() == ' ' || out.front() == '\'')) out.erase(out.begin());
   return out.empty() ? "unknown" : out;
-}
-
-Mesh mesh_of(const conform_cad_result& r) {
-  Mesh mesh;
-  mesh.vertices.reserve(r.vertex_count);
-  for (std::size_t i = 0; i < r.vertex_count; ++i) {
-    mesh.vertices.emplace_back(r.vertices[3 * i], r.vertices[3 * i + 1], r.vertices[3 * i + 2]);
-  }
-  mesh.faces.reserve(r.triangle_count);
-  for (std::size_t i = 0; i < r.triangle_count; ++i) {
-    mesh.faces.push_back({r.triangles[3 * i], r.triangles[3 * i + 1], r.triangles[3 * i + 2]});
-  }
-  return mesh;
 }
 
 CadBody body_of(const conform_cad_body& b) {
@@ -95,6 +71,12 @@ bool CadReadOptions::IsValid(std::string* error) const {
     why = "the CAD deflection must be between 0.0001 and 10 mm, not " + std::to_string(deflection_mm);
   } else if (!(std::isfinite(angular_deflection_rad) && angular_deflection_rad >= 0.0)) {
     why = "the CAD angular deflection must be >= 0 rad";
+  } else if (!(std::isfinite(timeout_s) && timeout_s > 0.0 && timeout_s <= 86400.0)) {
+    why = "the CAD time limit must be more than 0 and at most 86400 s, not " + std::to_string(timeout_s);
+  } else if (memory_limit_mib < 64 || memory_limit_mib > (std::size_t{1} << 20)) {
+    why = "the CAD memory limit must be between 64 MiB and 1 TiB, not " + std::to_string(memory_limit_mib) + " MiB";
+  } else if (max_triangles == 0 || max_triangles > 200'000'000) {
+    why = "the CAD triangle budget must be between 1 and 200 million, not " + std::to_string(max_triangles);
   } else if (!save_mesh_path.empty()) {
     const std::string e = file_extension(save_mesh_path);
     if (e != ".ply" && e != ".stl" && e != ".obj") {
@@ -152,10 +134,6 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
   if (!step && !looks_like_iges(bytes)) {
     throw Error(path + ": not an IGES file (its first line is not an 80-column Start record, 'S' in column 73)");
   }
-  const Plugin& plugin = Plugin::load("conform_cad");
-  auto* read = plugin.symbol<int(const conform_cad_request*, conform_cad_result*)>("conform_cad_read");
-  auto* free_result = plugin.symbol<void(conform_cad_result*)>("conform_cad_free");
-
   conform_cad_request request{};
   request.abi_version = CONFORM_CAD_ABI_VERSION;
   request.path = path.c_str();
@@ -164,16 +142,9 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
   request.format = step ? CONFORM_CAD_STEP : CONFORM_CAD_IGES;
   request.deflection_mm = options.deflection_mm;
   request.angular_deflection_rad = options.angular_deflection();
-  if (options.progress) {
-    request.progress = forward_progress;
-    request.progress_context = const_cast<ProgressFn*>(&options.progress);
-  }
-  conform_cad_result result{};
-  const ResultGuard guard{free_result, &result};
-  if (read(&request, &result) != 0) {
-    throw Error(path + ": " + (result.error != nullptr ? result.error : "the CAD plugin failed without a reason"));
-  }
-  MeshWeldResult welded = weld_coincident_vertices(mesh_of(result), path);
+  request.max_triangles = options.max_triangles;
+  detail::CadWireResult result = detail::read_cad_in_child(path, request, options);
+  MeshWeldResult welded = weld_coincident_vertices(std::move(result.mesh), path);
 
   CadReport cad;
   cad.read = true;
@@ -183,14 +154,14 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
   cad.mm_per_file_unit = result.mm_per_file_unit;
   cad.deflection_mm = options.deflection_mm;
   cad.angular_deflection_rad = request.angular_deflection_rad;
-  for (std::size_t i = 0; i < result.body_count; ++i) {
-    cad.bodies.push_back(body_of(result.bodies[i]));
+  for (const conform_cad_body& b : result.bodies) {
+    cad.bodies.push_back(body_of(b));
     cad.faces += cad.bodies.back().faces;
   }
   cad.triangles = welded.mesh.faces.size();
   cad.vertices = welded.mesh.vertices.size();
-  if (warnings != nullptr && result.warnings != nullptr) {
-    std::string text = result.warnings;
+  if (warnings != nullptr) {
+    const std::string& text = result.warnings;
     for (std::size_t start = 0; start < text.size();) {
       const std::size_t end = std::min(text.find('\n', start), text.size());
       if (end > start) warnings->push_back(path + ": " + text.substr(start, end - start));

@@ -29,8 +29,23 @@ struct CadReadOptions {
   // that a user can see and reuse the mesh conform measured against. Not written when reading fails.
   std::string save_mesh_path;
 
-  // False (and why) for a deflection that is not finite and in [1e-4, 10] mm, a negative angular deflection, or a
-  // save_mesh_path that is not .ply, .stl or .obj.
+  // Isolation (issue 32): OpenCASCADE runs in a child process (core/src/cad_child.h), so that a damaged file that
+  // crashes it, grows without bound or loops ends as a conform::Error naming the file, never as a crash of conform.
+  // Wall-clock limit of the read and tessellation, s: a valid part of a few thousand faces takes seconds (docs/cad.md),
+  // and a face listed a million times in a hostile STEP would otherwise run for many minutes.
+  double timeout_s = 120.0;
+  // Address space the reader may add to what it inherits, MiB (RLIMIT_AS): room for the triangle budget below on
+  // doubly curved faces, where OpenCASCADE 7.6's mesher peaks at about 3.6 KiB per triangle (docs/cad.md, measured).
+  std::size_t memory_limit_mib = 4096;
+  // A tessellation estimated (before meshing, from each face's area and curvature) or found to need more triangles is
+  // refused, naming the estimate and the deflection that would fit. One million: three times the largest part
+  // measured in docs/cad.md (357k triangles), about what the mesher builds within the memory limit above on doubly
+  // curved faces (1.1 million at 3.6 KiB) and within the time limit (a sphere's 201k triangles take 13 s).
+  std::size_t max_triangles = 1'000'000;
+
+  // False (and why) for a deflection that is not finite and in [1e-4, 10] mm, a negative angular deflection, a
+  // save_mesh_path that is not .ply, .stl or .obj, a timeout not in (0, 86400] s, a memory limit under 64 MiB or over
+  // 1 TiB, or a triangle budget of 0 or over 200 million.
   bool IsValid(std::string* error) const;
   double angular_deflection() const;  // as used (resolved when 0)
 };

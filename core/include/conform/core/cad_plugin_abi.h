@@ -11,7 +11,7 @@
 extern "C" {
 #endif
 
-#define CONFORM_CAD_ABI_VERSION 1
+#define CONFORM_CAD_ABI_VERSION 2
 
 enum conform_cad_format { CONFORM_CAD_STEP = 1, CONFORM_CAD_IGES = 2 };
 
@@ -31,6 +31,7 @@ typedef struct conform_cad_request {
   int format;                // conform_cad_format
   double deflection_mm;      // chordal deflection of the tessellation, > 0
   double angular_deflection_rad;
+  size_t max_triangles;      // refuse a tessellation estimated (before meshing) or found to exceed this, > 0
   conform_cad_progress_fn progress;  // may be NULL
   void* progress_context;
 } conform_cad_request;
