@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "file_bytes.h"
 #include "text_scanner.h"
@@ -82,6 +83,9 @@ double CsvTable::number(std::size_t row, std::size_t column_index) const {
       path + ":" + std::to_string(line_numbers[row]) + ": column '" + columns[column_index] + "': ";
   if (!detail::parse_number(token, value)) throw Error(where + detail::describe_bad_number(token));
   if (!std::isfinite(value)) throw Error(where + "'" + token + "' is not a finite number");
+  if (std::abs(value) > kMaxMagnitude) {
+    throw Error(where + "'" + token + "' is beyond +-1e7, more than any length (mm), angle or time a job reads");
+  }
   return value;
 }
 

@@ -30,8 +30,12 @@ OutputSet::FileId identify(const std::string& path) {
   }
   const std::string resolved = detail::resolve_symlinks(path);
   std::error_code error;
-  const fs::path absolute = fs::absolute(resolved, error);
-  id.normal = (error ? fs::path(resolved) : absolute).lexically_normal().string();
+  fs::path absolute = fs::absolute(resolved, error);
+  if (error) absolute = resolved;
+  // Every directory on the way resolved too: `x.ply` and `selfdir/x.ply` (selfdir a link to .) are one new file.
+  std::error_code canonical_error;
+  const fs::path canonical = fs::weakly_canonical(absolute, canonical_error);
+  id.normal = (canonical_error ? absolute.lexically_normal() : canonical).string();
   struct stat st {};
   if (::stat(resolved.c_str(), &st) == 0) {
     id.exists = true;

@@ -45,19 +45,32 @@ std::vector<Edge> sorted_edges(const Mesh& mesh) {
   return edges;
 }
 
-// Per face, the faces across its edges (every pair of faces that share an edge, non-manifold edges included).
-std::vector<std::vector<std::size_t>> edge_neighbours(const Mesh& mesh, const std::vector<Edge>& edges) {
-  std::vector<std::vector<std::size_t>> out(mesh.faces.size());
+// Per face, the faces across its edges (every pair of faces that share an edge, non-manifold edges included), as
+// compressed rows: face f's neighbours are neighbour[start[f]] .. neighbour[start[f + 1] - 1].
+struct Neighbours {
+  std::vector<std::size_t> start, neighbour;
+};
+
+Neighbours edge_neighbours(const Mesh& mesh, const std::vector<Edge>& edges) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  pairs.reserve(edges.size());
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
     for (std::size_t p = i; p < j; ++p) {
       for (std::size_t q = i; q < j; ++q) {
-        if (edges[p].face != edges[q].face) out[edges[p].face].push_back(edges[q].face);
+        if (edges[p].face != edges[q].face) pairs.emplace_back(edges[p].face, edges[q].face);
       }
     }
     i = j;
   }
+  std::sort(pairs.begin(), pairs.end());
+  Neighbours out;
+  out.start.assign(mesh.faces.size() + 1, 0);
+  for (const auto& [f, g] : pairs) ++out.start[f + 1];
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) out.start[f + 1] += out.start[f];
+  out.neighbour.reserve(pairs.size());
+  for (const auto& fg : pairs) out.neighbour.push_back(fg.second);
   return out;
 }
 
@@ -65,7 +78,7 @@ std::vector<std::vector<std::size_t>> edge_neighbours(const Mesh& mesh, const st
 // whose three vertices lie on the seed's plane. Returns each face's region (faces without area: a region each).
 std::vector<std::size_t> grow_regions(const Mesh& mesh, const std::vector<Eigen::Vector3d>& unit_normals,
                                       const std::vector<double>& areas,
-                                      const std::vector<std::vector<std::size_t>>& neighbours) {
+                                      const Neighbours& neighbours) {
   const std::size_t n = mesh.faces.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -93,7 +106,8 @@ std::vector<std::size_t> grow_regions(const Mesh& mesh, const std::vector<Eigen:
     while (!stack.empty()) {
       const std::size_t f = stack.back();
       stack.pop_back();
-      for (std::size_t g : neighbours[f]) {
+      for (std::size_t k = neighbours.start[f]; k < neighbours.start[f + 1]; ++k) {
+        const std::size_t g = neighbours.neighbour[k];
         if (region[g] != kNone || areas[g] <= 0.0 || !on_plane(g)) continue;
         region[g] = id;
         stack.push_back(g);
@@ -161,7 +175,7 @@ std::vector<unsigned char> planar_faces(const Mesh& mesh, double crease_angle_ra
     if (areas[f] <= kSliverShare * longest) areas[f] = 0.0;
   }
   const std::vector<Edge> edges = sorted_edges(mesh);
-  const std::vector<std::vector<std::size_t>> neighbours = edge_neighbours(mesh, edges);
+  const Neighbours neighbours = edge_neighbours(mesh, edges);
   const std::vector<std::size_t> region = grow_regions(mesh, unit_normals, areas, neighbours);
   const std::size_t count = n == 0 ? 0 : *std::max_element(region.begin(), region.end()) + 1;
   const std::vector<double> width = region_widths(mesh, areas, region, count);
@@ -188,7 +202,8 @@ std::vector<unsigned char> planar_faces(const Mesh& mesh, double crease_angle_ra
   const double crease_cosine = std::cos(crease_angle_rad);
   std::vector<double> widest_neighbour(count, 0.0);
   for (std::size_t f = 0; f < n; ++f) {
-    for (std::size_t g : neighbours[f]) {
+    for (std::size_t k = neighbours.start[f]; k < neighbours.start[f + 1]; ++k) {
+      const std::size_t g = neighbours.neighbour[k];
       if (region[g] == region[f] || unit_normals[f].dot(unit_normals[g]) < crease_cosine) continue;
       widest_neighbour[region[f]] = std::max(widest_neighbour[region[f]], width[region[g]]);
     }

@@ -76,6 +76,28 @@ TopoDS_Shape filleted_block() {
   return BRepAlgoAPI_Cut(chamfered, pocket).Shape();
 }
 
+TopoDS_Shape ribbed_plate() {
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 120.0, 80.0, 10.0).Shape();
+  for (int i = 0; i < 3; ++i) {
+    part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeBox(gp_Pnt(10.0 + 30.0 * i, 5, 10), 6.0, 70.0, 8.0).Shape()).Shape();
+  }
+  part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(100, 40, 10), gp::DZ()), 9.0, 12.0).Shape())
+             .Shape();
+  part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeBox(gp_Pnt(90, 8, 4), 22.0, 14.0, 10.0).Shape()).Shape();
+  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
+  TopExp::MapShapesAndAncestors(part, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
+  BRepFilletAPI_MakeChamfer chamfer(part);
+  for (int i = 1; i <= faces_of_edge.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(faces_of_edge.FindKey(i));
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
+    if (std::abs(a.Z() - 10) < 1e-9 && std::abs(b.Z() - 10) < 1e-9 && std::abs(a.Y() - 80) < 1e-9 &&
+        std::abs(b.Y() - 80) < 1e-9) {
+      chamfer.Add(3.0, 3.0, edge, TopoDS::Face(faces_of_edge.FindFromIndex(i).First()));
+    }
+  }
+  return chamfer.Shape();
+}
+
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
 
 TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm) {

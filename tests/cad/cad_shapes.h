@@ -22,6 +22,9 @@ TopoDS_Shape box_with_boss_and_hole();
 // y = 40, it follows the tangent fillets all the way round: the top's corners are arcs of R6) and a 16 x 10 mm pocket
 // 5 mm deep in the top at (8..24, 8..18): flat faces next to fillets and steps, as machined.
 TopoDS_Shape filleted_block();
+// A machined plate 120 x 80 x 10 mm: three ribs 6 x 70 x 8 mm on top at x = 10, 40, 70, a boss of R9 and 12 mm at
+// (100, 40), a pocket 22 x 14 mm, 6 mm deep, at (90..112, 8..22), and a 3 mm chamfer on the top edge along y = 80.
+TopoDS_Shape ribbed_plate();
 // Radius 15 mm, height 40 mm, axis z from the origin.
 TopoDS_Shape cylinder();
 // Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).

@@ -91,6 +91,17 @@ TEST(Csv, BadCellsNameFileLineAndColumn) {
   EXPECT_THROW(table.number(2, 1), Error);   // nan is not finite
   EXPECT_THROW(table.integer(3, 1), Error);  // 1.5 is not whole
   EXPECT_EQ(table.number(3, 1), 1.5);
+  // Beyond +-1e7 (10 km in mm): a broken file, not a coordinate (a 1e300 point printed 300 digits into a program).
+  const CsvTable far = parse_csv("x,y\n1e7,-1e7\n1e300,0\n0,-1.0000001e7\n", "far.csv");
+  EXPECT_EQ(far.number(0, 0), 1e7);
+  EXPECT_EQ(far.number(0, 1), -1e7);
+  try {
+    far.number(1, 0);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_TRUE(contains(e.what(), "far.csv:3: column 'x': '1e300' is beyond")) << e.what();
+  }
+  EXPECT_THROW(far.number(2, 1), Error);
   try {
     table.column("c");
     FAIL();

@@ -59,6 +59,17 @@ TEST(OutputSet, AnOutputGivenTwiceIsRefusedADeviceMayBeSharedEmptyIsIgnored) {
   set.add_input("");
 }
 
+// Two new outputs, one named through a link to its own directory: the same file, refused (one would be lost).
+TEST(OutputSet, TwoNewOutputsThroughALinkedDirectoryAreOneFile) {
+  test::TempDir dir;
+  ASSERT_EQ(::symlink(".", dir.file("selfdir").c_str()), 0);
+  OutputSet set;
+  set.add_output(dir.file("x.ply"));
+  EXPECT_TRUE(contains(error_of([&] { set.add_output(dir.file("selfdir/x.ply")); }), "given as two outputs"));
+  EXPECT_TRUE(contains(error_of([&] { set.add_output(dir.file("selfdir/selfdir/./x.ply")); }), "given as two outputs"));
+  set.add_output(dir.file("selfdir/y.ply"));  // another file
+}
+
 TEST(OutputSet, CommitReplacesEveryTargetAndLeavesNothingElse) {
   test::TempDir dir;
   test::write_bytes(dir.file("a.csv"), "old a");

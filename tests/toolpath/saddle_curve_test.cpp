@@ -168,6 +168,9 @@ TEST(SaddleCurve, RejectsJointsWithoutOneClosedSeam) {
   expect_invalid(geometry(600, 150, 90, 450.001), "offset 450.001 mm is too large");
   expect_invalid(geometry(600, 150, 90, -500), "too large");
   expect_invalid(geometry(std::nan(""), 150, 90, 0), "finite");
+  expect_invalid(geometry(1e300, 150, 90, 0), "beyond");  // a CSV of inf and nan before
+  expect_invalid(geometry(1.000001e6, 150, 90, 0), "beyond");
+  EXPECT_TRUE(geometry(1e6, 150, 90, 0).IsValid(nullptr));
   EXPECT_TRUE(geometry(600, 150, 90, 449).IsValid(nullptr));
   EXPECT_TRUE(geometry(600, 150, 90, 450).IsValid(nullptr));  // touches the cylinder: one corner
   EXPECT_TRUE(geometry(150, 150, 1, 0).IsValid(nullptr));     // equal diameters, the lowest pitch

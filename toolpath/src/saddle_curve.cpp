@@ -32,6 +32,8 @@ bool SaddleGeometry::IsValid(std::string* error) const {
     why << "the cylinder radius R, pipe radius r, pitch and offset must be finite numbers";
   } else if (!(R > 0.0)) {
     why << "the cylinder radius R = " << R << " mm must be positive";
+  } else if (R > kMaxRadiusMm) {
+    why << "the cylinder radius R = " << R << " mm is beyond " << kMaxRadiusMm << " mm (1 km): not a part";
   } else if (!(r > 0.0)) {
     why << "the pipe radius r = " << r << " mm must be positive";
   } else if (!(r <= R)) {
