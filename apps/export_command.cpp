@@ -54,6 +54,9 @@ class ExportCommand : public Command {
                  "Keep the tool x axis within this angle of --preferred-x (turning about z) to avoid wrist flips, "
                  "deg; 0: off");
     c.add_option("--preferred-x", preferred_x_, "Preferred tool x direction in the part frame, x,y,z");
+    c.add_option("--max-jump-ratio", max_jump_ratio_,
+                 "A step between consecutive path points longer than this many times the segment's median step (and "
+                 "than 1 mm) is refused as a broken row (exit 2); 0: allow any jump");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
 
@@ -70,6 +73,7 @@ class ExportCommand : public Command {
     o.frame_path = frame_path_;
     o.frames.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
     o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    o.frames.max_jump_ratio = max_jump_ratio_;
     o.program = options_;
     o.program.name = name_;
     o.program.five_axis = !three_axis_;
@@ -111,6 +115,7 @@ class ExportCommand : public Command {
   std::string name_;
   bool three_axis_ = false;
   double roll_cone_deg_ = 0.0;
+  double max_jump_ratio_ = ToolFrameOptions{}.max_jump_ratio;
   std::string preferred_x_ = "1,0,0";
   bool json_ = false;
 };

@@ -242,6 +242,36 @@ TEST(JobPaths, FrameColumnsAreTakenAsGiven) {
   EXPECT_THROW(tool_path_from_csv(table("x_mm,y_mm,z_mm,qw,qx,qy,qz\n0,0,0,2,0,0,0\n"), {}), Error);
 }
 
+// A column the job does not use still holds numbers (docs/export.md: exit 2), and a jump far beyond the path's own
+// step is a broken row: 15 m between 8 mm steps refused, naming the segment and the points; allowed with ratio 0.
+TEST(JobPaths, UnusedColumnsAreNumbersAndJumpsAreRefused) {
+  const auto message = [](const std::string& text, double ratio) {
+    ToolFrameOptions options;
+    options.max_jump_ratio = ratio;
+    try {
+      tool_path_from_csv(table(text), options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string header = "x_mm,y_mm,z_mm,nx,ny,nz,extra\n";
+  EXPECT_NE(message(header + "0,0,0,0,0,1,abc\n8,0,0,0,0,1,1\n", 50).find("test.csv:2: column 'extra'"),
+            std::string::npos);
+  EXPECT_NE(message(header + "0,0,0,0,0,1,inf\n8,0,0,0,0,1,1\n", 50).find("column 'extra'"), std::string::npos);
+  EXPECT_NE(message(header + "0,0,0,0,0,1,1e300\n8,0,0,0,0,1,1\n", 50).find("beyond"), std::string::npos);
+  std::string jump = header;
+  for (int i = 0; i < 10; ++i) jump += std::to_string(8 * i) + ",0,0,0,0,1,0\n";
+  jump += "15072,0,0,0,0,1,0\n";
+  const std::string why = message(jump, 50);
+  EXPECT_NE(why.find("a jump of 15000 mm between points 10 and 11"), std::string::npos) << why;
+  EXPECT_EQ(message(jump, 0), "no error");
+  // 484 mm after two 8 mm steps: beyond 50 times; 384 mm is not.
+  EXPECT_NE(message(header + "0,0,0,0,0,1,0\n8,0,0,0,0,1,0\n16,0,0,0,0,1,0\n500,0,0,0,0,1,0\n", 50).find("jump"),
+            std::string::npos);
+  EXPECT_EQ(message(header + "0,0,0,0,0,1,0\n8,0,0,0,0,1,0\n16,0,0,0,0,1,0\n400,0,0,0,0,1,0\n", 50), "no error");
+}
+
 TEST(JobPaths, BadFilesAreRefusedNamingTheProblem) {
   auto message = [](const std::string& text) {
     try {

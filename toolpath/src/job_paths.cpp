@@ -1,8 +1,11 @@
 #include "conform/toolpath/job_paths.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -185,10 +188,53 @@ std::string detect_path_job(const CsvTable& t) {
               "with id,i,dx,dy,dz (profile) or with layer,path,i (weld-layers)");
 }
 
+namespace {
+
+// A step no path's own spacing makes suspicious below this, mm (a few coarse points of a short seam).
+constexpr double kMinJumpMm = 1.0;
+
+// Every cell of every column that is not text (a feature's id, a frame file's segment and kind) is a number, used
+// by the job's frames or not: a broken column is a broken file.
+void check_numeric_columns(const CsvTable& t) {
+  for (std::size_t c = 0; c < t.columns.size(); ++c) {
+    const std::string& name = t.columns[c];
+    if (name == "id" || name == "segment" || name == "kind") continue;
+    for (std::size_t r = 0; r < t.rows(); ++r) t.number(r, c);
+  }
+}
+
+// A step far beyond the segment's median step (and beyond 1 mm): a broken row, not a move.
+void check_jumps(const CsvTable& t, const ToolPath& path, double max_ratio) {
+  if (max_ratio <= 0.0) return;
+  for (const ToolSegment& s : path.segments) {
+    std::vector<double> steps;
+    for (std::size_t i = 1; i < s.frames.size(); ++i) {
+      steps.push_back((s.frames[i].position - s.frames[i - 1].position).norm());
+    }
+    if (steps.size() < 2) continue;
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const double limit = std::max(kMinJumpMm, max_ratio * median);
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      if (steps[i] <= limit) continue;
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    ": segment '%s': a jump of %.6g mm between points %zu and %zu, %.0f times its median step of "
+                    "%.6g mm: a broken row, not a move (export --max-jump-ratio 0 allows it)",
+                    s.name.c_str(), steps[i], i + 1, i + 2, steps[i] / std::max(median, 1e-12), median);
+      throw Error(t.path + text);
+    }
+  }
+}
+
+}  // namespace
+
 ToolPath tool_path_from_csv(const CsvTable& table, const ToolFrameOptions& options, ToolFrameFigures* figures) {
   ToolPath path;
   path.job = detect_path_job(table);
   if (table.rows() == 0) throw Error(table.path + ": no rows (an empty path)");
+  check_numeric_columns(table);
   std::vector<Grouped> groups;
   if (path.job == "tube-joint") groups = tube_joint(table);
   if (path.job == "saddle") groups = saddle(table);
@@ -205,6 +251,7 @@ ToolPath tool_path_from_csv(const CsvTable& table, const ToolFrameOptions& optio
     path.segments.push_back(std::move(segment));
   }
   if (path.segments.empty()) throw Error(table.path + ": no path rows (only centres, i = -1, or approach moves)");
+  check_jumps(table, path, options.max_jump_ratio);
   measure_orientation_steps(path, &fig);
   return path;
 }

@@ -111,6 +111,9 @@ bool ToolFrameOptions::IsValid(std::string* error) const {
   std::ostringstream why;
   if (!(roll_cone_rad >= 0.0 && roll_cone_rad <= kPi)) why << "the roll cone must be in [0, 180] deg";
   if (!finite(preferred_x) || !(preferred_x.norm() > 0.0)) why << "the preferred x direction must be finite, not 0";
+  if (!(max_jump_ratio == 0.0 || (max_jump_ratio > 1.0 && std::isfinite(max_jump_ratio)))) {
+    why << "the jump ratio must be > 1 (0: no check)";
+  }
   if (error != nullptr) *error = why.str();
   return why.str().empty();
 }

@@ -23,8 +23,10 @@ namespace conform {
 // conform::Error naming the file and the columns a path file needs when the header matches none.
 std::string detect_path_job(const CsvTable& table);
 
-// The table's tool frames, in the file's frame. Throws conform::Error naming the file, line and column of a missing,
-// non-numeric or non-finite value, or a zero tool axis.
+// The table's tool frames, in the file's frame. Every column but the text ones (id, segment, kind) must hold numbers
+// in every row, used or not. Throws conform::Error naming the file, line and column of a missing, non-numeric,
+// non-finite or out-of-bounds value (csv.h), a zero tool axis, or a jump between consecutive points beyond
+// options.max_jump_ratio times the segment's median step.
 ToolPath tool_path_from_csv(const CsvTable& table, const ToolFrameOptions& options,
                             ToolFrameFigures* figures = nullptr);
 

@@ -48,6 +48,9 @@ struct ToolFrameOptions {
   // (projected off z) by turning it about z; rad. 0: off (x = travel).
   double roll_cone_rad = 0.0;
   Eigen::Vector3d preferred_x = Eigen::Vector3d::UnitX();  // in the path's frame; any length > 0
+  // A step between consecutive points of a segment longer than this many times the segment's median step (and than
+  // 1 mm) is a broken file, not a move (a 15 m jump between 8 mm steps): refused (job_paths.h). 0: no check.
+  double max_jump_ratio = 50.0;
 
   bool IsValid(std::string* error) const;
 };
