@@ -4,6 +4,10 @@ Every job runs the pipeline the CLI runs (same options, same defaults, same mess
 `Result` whose fields are the keys of the CLI's `--json` output, plus per-point numpy arrays aligned with the input
 (NaN where unmatched). Bad input raises `conform.Error` with the CLI's message. See docs/python.md.
 
+Output files are checked as the CLI checks them, before any work: an output that is one of the call's inputs (also
+through a symbolic or a hard link) or that is given twice raises `conform.Error`; the files of one call are written
+all or none. Face indices must be integers in [0, vertex count) (integral floats too), or the call raises ValueError.
+
 The jobs with the CLI's `--report` (align, compare, fit_cylinder, saddle, weld_layers, profile, tube_joint, sicp) take
 `report="page.html"`: the same self-contained HTML page, byte for byte (docs/report.md).
 """

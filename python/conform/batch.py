@@ -1,24 +1,31 @@
 """Run one conform job per part of a manifest on a Dask cluster.
 
     python3 -m conform.batch MANIFEST.csv --out-dir DIR [--local-workers N | --scheduler tcp://HOST:8786]
+                             [--part-timeout SECONDS]
 
 MANIFEST.csv: a header row, then one row per part: `id`, `job` (compare, fit_cylinder, pose_error, saddle, weld_layers,
 profile, tube_joint), then the
 job's options as columns named like the Python keyword arguments (scan, reference, transform, tolerance, ...). An
 empty cell leaves that option at its default. Relative input paths are relative to the manifest's folder; output
-options (out, out_deviation, ...) relative to DIR.
+options (out, out_deviation, ..., report) relative to DIR, and must stay in it.
 
-Each part writes DIR/<id>.json (the CLI's --json for that part) and the outputs it names; a part that fails writes
-DIR/<id>.error.txt instead and never stops the others. DIR/summary.csv gets one row per part: id, job, ok, the
-headline figures and the error. A rerun skips the parts whose JSON exists (resume) and retries the failed ones.
+Each part runs in its own process (a crash or a timeout is that part's failure) and writes DIR/<id>.json (the CLI's
+--json for that part) and the outputs it names; a part that fails writes DIR/<id>.error.txt instead and never stops
+the others. DIR/summary.csv gets one row per part: id, job, ok, the headline figures and the error. A rerun skips the
+parts done with the same job, options and inputs (resume) and runs the others again.
 """
 
 import argparse
 import csv
+import hashlib
 import json
 import os
 import re
+import signal
+import stat
+import subprocess
 import sys
+import tempfile
 
 # Per job: the CLI's exit-0 test on its JSON, and the figures summary.csv shows.
 HEADLINES = {
@@ -37,6 +44,9 @@ HEADLINES = {
 INPUTS = {"scan", "reference", "transform", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge",
           "leg", "stub", "leg_pose", "leg_markers", "stub_markers", "groove_table",
           "contour", "trajectory", "surface", "truth", "path", "frame"}
+DEFAULT_PART_TIMEOUT_S = 3600.0
+STATE_DIR = ".conform-batch"  # in DIR: the resume key of each part done (<id>.key)
+_RESULT = "conform.batch result: "  # the line a part's process prints its summary row on
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 
 
@@ -50,17 +60,38 @@ def _value(text):
     return text
 
 
+def is_output(key):
+    return key in ("out", "report") or key.startswith("out_")
+
+
+def output_path(text, out_dir, part_id, key):
+    """DIR/text, or ValueError when it would be written outside DIR: an absolute path, a `..` component, or a path
+    that leaves DIR through a symbolic link (DIR's own links resolved first)."""
+    where = f"part {part_id}: {key}={text!r}"
+    if os.path.isabs(text) or text.startswith("~"):
+        raise ValueError(f"{where}: an absolute path; outputs are relative to --out-dir and stay in it")
+    if ".." in re.split(r"[/\\]", text):
+        raise ValueError(f"{where}: '..' leaves --out-dir; outputs stay in it")
+    path = os.path.join(out_dir, text)
+    real_dir = os.path.realpath(out_dir)
+    real = os.path.realpath(path)
+    if real == real_dir or os.path.commonpath([real, real_dir]) != real_dir:
+        raise ValueError(f"{where}: resolves to {real} (through a symbolic link), outside --out-dir {real_dir}")
+    return path
+
+
 def part_options(row, manifest_dir, out_dir):
-    """The keyword arguments of one manifest row (id and job removed)."""
+    """The keyword arguments of one manifest row (id and job removed). Raises ValueError for an output that would
+    leave out_dir."""
     options = {}
     for key, text in row.items():
-        if key in ("id", "job") or text is None or text.strip() == "":
+        if key in ("id", "job") or key is None or text is None or text.strip() == "":
             continue
         text = text.strip()
         if key in INPUTS:
             options[key] = os.path.join(manifest_dir, text)
-        elif key == "out" or key.startswith("out_"):
-            options[key] = os.path.join(out_dir, text)
+        elif is_output(key):
+            options[key] = output_path(text, out_dir, row.get("id", ""), key)
         elif key in ("axis", "web_normal", "groove_deg", "wall_thickness", "preferred_x"):
             options[key] = [float(v) for v in re.split(r"[ ,]+", text)]
         else:
@@ -68,37 +99,198 @@ def part_options(row, manifest_dir, out_dir):
     return options
 
 
+def _file_id(path):
+    """What names one file: (device, inode) when it exists, else its absolute path with links resolved."""
+    try:
+        st = os.stat(path)
+        return ("inode", st.st_dev, st.st_ino)
+    except OSError:
+        return ("path", os.path.realpath(path))
+
+
+def check_outputs(parts, manifest, out_dir):
+    """ValueError, before anything runs, when two parts (or one part twice) would write one file, when a part would
+    write another part's input, the manifest or one of the batch's own files (summary.csv, <id>.json,
+    <id>.error.txt, .conform-batch/): parts run at the same time, so the last one would silently win."""
+    own = {_file_id(os.path.join(out_dir, "summary.csv")): "summary.csv",
+           _file_id(os.path.join(out_dir, STATE_DIR)): STATE_DIR,
+           _file_id(manifest): "the manifest"}
+    for part_id, _, _ in parts:
+        own[_file_id(os.path.join(out_dir, f"{part_id}.json"))] = f"{part_id}.json"
+        own[_file_id(os.path.join(out_dir, f"{part_id}.error.txt"))] = f"{part_id}.error.txt"
+    state = os.path.realpath(os.path.join(out_dir, STATE_DIR))
+    inputs = {}
+    for part_id, _, options in parts:
+        for key, value in options.items():
+            if key in INPUTS:
+                inputs.setdefault(_file_id(value), (part_id, key))
+    written = {}
+    for part_id, _, options in parts:
+        for key, value in options.items():
+            if not is_output(key):
+                continue
+            name = _file_id(value)
+            where = f"part {part_id}: {key}={os.path.relpath(value, out_dir)!r}"
+            if os.path.commonpath([os.path.realpath(value), state]) == state:
+                raise ValueError(f"{where}: is in {STATE_DIR}, which the batch writes itself")
+            if name in own:
+                raise ValueError(f"{where}: is {own[name]}, which the batch writes itself")
+            if name in written:
+                other, other_key = written[name]
+                raise ValueError(f"{where}: part {other} writes it too ({other_key}); each output needs its own file")
+            if name in inputs and inputs[name][0] != part_id:
+                raise ValueError(f"{where}: is an input of part {inputs[name][0]} ({inputs[name][1]}); parts run at "
+                                 "the same time, write it to another file")
+            written[name] = (part_id, key)
+
+
+def part_key(job, options):
+    """The resume key of a part: its job, its options and, for each input file, its path, size and modification
+    time (nanoseconds). A part is done when its key is the one stored at its last success."""
+    files = {}
+    for key, value in sorted(options.items()):
+        paths = [value] if key in INPUTS else []
+        if key == "init" and isinstance(value, str) and value.startswith("pairs:"):
+            paths = [value[len("pairs:"):]]
+        for path in paths:
+            try:
+                st = os.stat(path)
+                files[path] = [os.path.realpath(path), st.st_size, st.st_mtime_ns]
+            except OSError as e:
+                files[path] = [None, e.errno]
+    text = json.dumps({"job": job, "options": options, "inputs": files}, sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _regular(path):
+    """Whether path is a regular file (not followed if a link), without opening it: a FIFO would block the open."""
+    try:
+        return stat.S_ISREG(os.lstat(path).st_mode)
+    except OSError:
+        return False
+
+
+def _special(path):
+    try:
+        mode = os.lstat(path).st_mode
+    except OSError:
+        return False
+    return not stat.S_ISREG(mode)
+
+
+def _read_small(path):
+    """The text of a regular file, or None (absent, special or unreadable). Never opens a FIFO or a device."""
+    if not _regular(path):
+        return None
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0))
+    except OSError:
+        return None
+    with os.fdopen(fd, encoding="utf-8") as f:
+        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):  # replaced between the lstat and the open
+            return None
+        return f.read()
+
+
 def _write_atomically(path, text):
-    temporary = f"{path}.{os.getpid()}.tmp"
-    with open(temporary, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(temporary, path)
+    """A new temporary (never an existing name: a FIFO there would block) renamed over path."""
+    fd, temporary = tempfile.mkstemp(prefix=os.path.basename(path) + ".", suffix=".tmp", dir=os.path.dirname(path))
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.lexists(temporary):
+            os.unlink(temporary)
+        raise
 
 
-def run_part(row, manifest_dir, out_dir):
-    """Run one part where it is called (a Dask worker, or here); returns its summary row. Never raises."""
-    import conform  # on the worker
+def _remove(path):
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
 
-    part_id, job = row.get("id", ""), row.get("job", "")
+
+def _record(out_dir, part_id, values, error, key):
+    """The files of a part's outcome: its JSON and resume key, or its error file (the stale JSON and key removed)."""
+    json_path = os.path.join(out_dir, f"{part_id}.json")
+    key_path = os.path.join(out_dir, STATE_DIR, f"{part_id}.key")
     error_path = os.path.join(out_dir, f"{part_id}.error.txt")
+    if error:
+        _remove(key_path)
+        _remove(json_path)
+        _write_atomically(error_path, error + "\n")
+    else:
+        _remove(key_path)
+        _write_atomically(json_path, json.dumps(values, indent=2) + "\n")
+        os.makedirs(os.path.dirname(key_path), exist_ok=True)
+        _write_atomically(key_path, key + "\n")
+        _remove(error_path)
+
+
+def run_part(spec):
+    """Run one part in this process and record its outcome; returns its summary row. Never raises."""
+    import conform
+
+    part_id, job, out_dir = spec["id"], spec["job"], spec["out_dir"]
     try:
         if job not in HEADLINES:
             raise conform.Error(f"unknown job {job!r}; one of {', '.join(sorted(HEADLINES))}")
-        result = conform.JOBS[job](**part_options(row, manifest_dir, out_dir))
-        values = result.to_dict()
-        _write_atomically(os.path.join(out_dir, f"{part_id}.json"), json.dumps(values, indent=2) + "\n")
-        if os.path.exists(error_path):
-            os.remove(error_path)
-        return summary_row(part_id, job, values, "")
+        values = conform.JOBS[job](**spec["options"]).to_dict()
+        error = ""
     except Exception as e:  # a failing part never stops the others
-        message = f"{type(e).__name__}: {e}" if not isinstance(e, conform.Error) else str(e)
-        _write_atomically(error_path, message + "\n")
-        return summary_row(part_id, job, None, message)
+        values, error = None, (str(e) if isinstance(e, conform.Error) else f"{type(e).__name__}: {e}")
+    _record(out_dir, part_id, values, error, spec["key"])
+    return summary_row(part_id, job, values, error)
+
+
+def _child_environment():
+    """The environment of a part's process: this package first on its path, one OpenMP thread unless set."""
+    env = dict(os.environ)
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env["PYTHONPATH"] = os.pathsep.join([here] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    env.setdefault("OMP_NUM_THREADS", "1")
+    return env
+
+
+def run_part_isolated(spec, timeout_s, command=None):
+    """Run one part in a process of its own (`python3 -m conform.batch --run-one`, the spec on stdin), so that a crash
+    in native code or a timeout fails this part only; returns its summary row. Never raises. `command` replaces the
+    child's command line (tests)."""
+    command = command or [sys.executable, "-m", "conform.batch", "--run-one"]
+    part_id, job, out_dir = spec["id"], spec["job"], spec["out_dir"]
+    try:
+        done = subprocess.run(command, input=json.dumps(spec), capture_output=True, text=True,
+                              timeout=timeout_s if timeout_s and timeout_s > 0 else None, env=_child_environment())
+        for line in reversed(done.stdout.splitlines()):
+            if line.startswith(_RESULT) and done.returncode == 0:
+                return json.loads(line[len(_RESULT):])
+        if done.returncode < 0:
+            try:
+                name = signal.Signals(-done.returncode).name
+            except ValueError:
+                name = f"signal {-done.returncode}"
+            error = f"the part's process was killed by {name} (a crash)"
+        else:
+            error = f"the part's process exited with code {done.returncode} without a result"
+        tail = done.stderr.strip().splitlines()[-5:]
+        if tail:
+            error += "; its last messages: " + " | ".join(tail)
+    except subprocess.TimeoutExpired:
+        error = f"timed out after {timeout_s:g} s (--part-timeout); the part's process was killed"
+    except OSError as e:
+        error = f"cannot start the part's process: {e}"
+    try:
+        _record(out_dir, part_id, None, error, spec["key"])
+    except OSError as e:
+        error += f" (and its error file cannot be written: {e})"
+    return summary_row(part_id, job, None, error)
 
 
 def summary_row(part_id, job, values, error):
     row = {"id": part_id, "job": job, "ok": False, "error": error}
-    if values is not None:
+    if values is not None and job in HEADLINES:
         ok, figures = HEADLINES[job]
         row["ok"] = bool(ok(values))
         for key in figures:
@@ -112,7 +304,7 @@ def read_manifest(path):
     with open(path, newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     ids = [r.get("id", "") for r in rows]
-    bad = [i for i in ids if not re.fullmatch(r"[A-Za-z0-9._-]+", i or "")]
+    bad = [i for i in ids if not re.fullmatch(r"[A-Za-z0-9._-]+", i or "") or i in (".", "..")]
     if bad or len(set(ids)) != len(ids):
         raise ValueError(f"{path}: every row needs a unique id of letters, digits, '.', '_', '-' (bad: {bad[:3]})")
     return rows
@@ -123,52 +315,116 @@ def write_summary(path, rows):
     for row in rows:
         columns += [k for k in row if k not in columns and k != "error"]
     columns.append("error")
-    with open(f"{path}.tmp", "w", newline="", encoding="utf-8") as f:
+    fd, temporary = tempfile.mkstemp(prefix="summary.csv.", suffix=".tmp", dir=os.path.dirname(path))
+    with os.fdopen(fd, "w", newline="", encoding="utf-8") as f:
         writer = csv.DictWriter(f, fieldnames=columns)
         writer.writeheader()
         for row in rows:
             writer.writerow({k: ("" if v is None else v) for k, v in row.items()})
-    os.replace(f"{path}.tmp", path)
+    os.replace(temporary, path)
 
 
-def run_batch(manifest, out_dir, client):
-    """Every part of the manifest on the Dask client; returns the summary rows in manifest order."""
+def _resumed(out_dir, part_id, job, key):
+    """The summary row of a part done with this key, or None (then it runs). Special files are never opened."""
+    json_path = os.path.join(out_dir, f"{part_id}.json")
+    key_path = os.path.join(out_dir, STATE_DIR, f"{part_id}.key")
+    for path in (json_path, key_path):
+        if _special(path):
+            print(f"conform.batch: {path} is not a regular file; ignored, part {part_id} runs again", file=sys.stderr)
+            return None
+    stored = _read_small(key_path)
+    if stored is None or stored.strip() != key or job not in HEADLINES:
+        return None
+    text = _read_small(json_path)
+    try:
+        values = json.loads(text) if text is not None else None
+    except ValueError:
+        values = None
+    return summary_row(part_id, job, values, "") if isinstance(values, dict) else None
+
+
+def manifest_parts(manifest, out_dir):
+    """(id, job, keyword arguments) of every part; ValueError when the manifest cannot be used (check_outputs)."""
     rows = read_manifest(manifest)
     manifest_dir = os.path.dirname(os.path.abspath(manifest))
     out_dir = os.path.abspath(out_dir)
+    parts = [(row["id"], row.get("job", ""), part_options(row, manifest_dir, out_dir)) for row in rows]
+    check_outputs(parts, manifest, out_dir)
+    return parts
+
+
+def run_batch(manifest, out_dir, client, part_timeout=DEFAULT_PART_TIMEOUT_S, part_command=None):
+    """Every part of the manifest, each in a process of its own, on the Dask client (None: one after the other
+    here); returns the summary rows in manifest order. Raises ValueError, before running anything, for a manifest
+    whose outputs leave out_dir or collide. `part_command` replaces the part's command line (tests only)."""
+    out_dir = os.path.abspath(out_dir)
+    parts = manifest_parts(manifest, out_dir)
     os.makedirs(out_dir, exist_ok=True)
     summary = {}
     todo = []
-    for row in rows:
-        done = os.path.join(out_dir, f"{row['id']}.json")
-        if os.path.exists(done) and row.get("job") in HEADLINES:  # resume
-            with open(done, encoding="utf-8") as f:
-                summary[row["id"]] = summary_row(row["id"], row["job"], json.load(f), "")
+    for part_id, job, options in parts:
+        key = part_key(job, options)
+        row = _resumed(out_dir, part_id, job, key)
+        if row is not None:
+            summary[part_id] = row
         else:
-            todo.append(row)
-    from distributed import as_completed
+            todo.append({"id": part_id, "job": job, "options": options, "out_dir": out_dir, "key": key})
+    if client is None:
+        for spec in todo:
+            summary[spec["id"]] = run_part_isolated(spec, part_timeout, part_command)
+    else:
+        from distributed import as_completed
 
-    futures = {client.submit(run_part, row, manifest_dir, out_dir, pure=False, key=f"conform-{row['id']}-{os.getpid()}"): row
-               for row in todo}
-    for future in as_completed(futures):
-        row = futures[future]
-        try:
-            summary[row["id"]] = future.result()
-        except Exception as e:  # the worker died (a crash, out of memory)
-            summary[row["id"]] = summary_row(row["id"], row.get("job", ""), None, f"{type(e).__name__}: {e}")
-    ordered = [summary[row["id"]] for row in rows]
+        futures = {client.submit(run_part_isolated, spec, part_timeout, part_command, pure=False,
+                                 key=f"conform-{spec['id']}-{os.getpid()}"): spec for spec in todo}
+        for future in as_completed(futures):
+            spec = futures[future]
+            try:
+                summary[spec["id"]] = future.result()
+            except Exception as e:  # the worker itself died (out of memory, killed)
+                summary[spec["id"]] = summary_row(spec["id"], spec["job"], None, f"{type(e).__name__}: {e}")
+    ordered = [summary[part_id] for part_id, _, _ in parts]
     write_summary(os.path.join(out_dir, "summary.csv"), ordered)
     return ordered
 
 
+def run_one():
+    """`--run-one`: the part's spec (JSON) on stdin, its summary row on stdout after _RESULT."""
+    spec = json.load(sys.stdin)
+    row = run_part(spec)
+    sys.stdout.write(_RESULT + json.dumps(row) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
+def _timeout(text):
+    value = float(text)
+    if not value >= 0:
+        raise argparse.ArgumentTypeError("give seconds >= 0 (0: no limit)")
+    return value
+
+
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if argv == ["--run-one"]:
+        return run_one()
     parser = argparse.ArgumentParser(prog="python3 -m conform.batch", description=__doc__.split("\n\n")[0])
     parser.add_argument("manifest", help="CSV: id, job, then the job's options as columns")
-    parser.add_argument("--out-dir", required=True, help="where <id>.json, outputs and summary.csv go")
+    parser.add_argument("--out-dir", required=True,
+                        help="where <id>.json, <id>.error.txt, summary.csv and the parts' outputs go (outputs may "
+                             "not leave it: no absolute paths, no '..', no links out)")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--local-workers", type=int, default=None, help="processes of a LocalCluster (default: cores)")
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    parser.add_argument("--part-timeout", type=_timeout, default=DEFAULT_PART_TIMEOUT_S, metavar="SECONDS",
+                        help="a part still running after this many seconds is killed and fails "
+                             f"(default: {DEFAULT_PART_TIMEOUT_S:g} s; 0: no limit)")
     args = parser.parse_args(argv)
+    try:
+        manifest_parts(args.manifest, args.out_dir)  # before a cluster is started
+    except (OSError, ValueError) as e:
+        print(f"conform.batch: error: {e}", file=sys.stderr)
+        return 2
 
     from distributed import Client, LocalCluster
 
@@ -177,15 +433,17 @@ def main(argv=None):
             client = Client(args.scheduler)
             cluster = None
         else:
-            # One OpenMP thread per worker process: the workers, not the threads of one job, share the cores.
+            # One OpenMP thread per part: the workers, not the threads of one job, share the cores.
             cluster = LocalCluster(n_workers=args.local_workers, threads_per_worker=1, processes=True,
                                    dashboard_address=None, env={"OMP_NUM_THREADS": "1"})
             client = Client(cluster)
     except OSError as e:
         print(f"conform.batch: error: cannot reach the scheduler: {e}", file=sys.stderr)
         return 2
+    from conform import batch  # not __main__'s copy: the workers import the module, the functions go by name
+
     try:
-        rows = run_batch(args.manifest, args.out_dir, client)
+        rows = batch.run_batch(args.manifest, args.out_dir, client, part_timeout=args.part_timeout)
     except (OSError, ValueError) as e:
         print(f"conform.batch: error: {e}", file=sys.stderr)
         return 2

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "conform/core/output_set.h"
 #include "inputs.h"
 
 namespace conform::python {
@@ -44,6 +45,23 @@ inline py::tuple answer(const nlohmann::json& j, const py::dict& arrays,
                         const std::vector<std::string>& in_memory = {}) {
   return py::make_tuple(text(j), arrays, in_memory);
 }
+
+// The CLI's file checks for one call (apps/main.cpp, Command::declare_files): every file the call reads and writes
+// declared before any work, so an output that is an input (the same path, or the same file through a symbolic or a
+// hard link) or that is given twice raises conform.Error then and there; and every file the job writes (the report,
+// an export's part files, a generator's companions) staged and renamed together by commit(), all or none. Declare it
+// after Inputs has written the in-memory inputs: a file written while it is current waits for its commit().
+class CallFiles {
+ public:
+  CallFiles(std::initializer_list<std::string> inputs, std::initializer_list<std::string> outputs) {
+    for (const std::string& path : inputs) files_.add_input(path);
+    for (const std::string& path : outputs) files_.add_output(path);
+  }
+  void commit() { files_.commit(); }
+
+ private:
+  OutputSet files_;
+};
 
 template <class Run>
 auto released(const Progress& progress, Run&& run) {

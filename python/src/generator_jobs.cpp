@@ -87,7 +87,9 @@ py::tuple job_generate_panel(PanelShape shape, const py::object& out, const py::
   set("seed", o.seed);
   const Progress progress(take("progress"));
   o.progress = progress.function();
+  CallFiles files({}, {options.out_path});
   const GeneratePanelResult result = released(progress, [&] { return run_generate_panel(options); });
+  files.commit();
   return answer(generate_panel_json(result), py::dict());
 }
 
@@ -128,10 +130,12 @@ py::tuple job_generate_tube_joint(const py::object& out_leg, const py::object& o
   set("seed", r.seed);
   set("ascii", r.ascii);
   const GenerateTubeJointOptions options = generate_tube_joint_options(r);
+  CallFiles files({}, {job.leg_path, job.stub_path, job.truth_path});
   const GenerateTubeJointResult result = [&] {
     py::gil_scoped_release release;
     return run_generate_tube_joint(options);
   }();
+  files.commit();
   return answer(generate_tube_joint_json(options, result), py::dict());
 }
 

@@ -3,11 +3,16 @@
 #include <stdlib.h>  // mkdtemp
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <system_error>
+#include <type_traits>
 
 #include <pybind11/numpy.h>
 
@@ -19,7 +24,6 @@ namespace conform::python {
 namespace {
 
 using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using FaceRows = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>;
 
 std::string shape_text(const py::array& a) {
   std::string text = "(";
@@ -38,13 +42,66 @@ std::vector<Eigen::Vector3d> rows_of(const py::handle& value, const std::string&
   return rows;
 }
 
-std::vector<Face> faces_of(const py::handle& value, const std::string& what) {
-  const FaceRows a = FaceRows::ensure(value);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw Error(what + ": faces must be an (F, 3) integer array");
-  std::vector<Face> faces(static_cast<std::size_t>(a.shape(0)));
-  const std::int32_t* data = a.data();
-  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = {data[3 * i], data[3 * i + 1], data[3 * i + 2]};
-  return faces;
+// One face index as the user gave it, for messages: 3.5, -1, 4294967296.
+template <class T>
+std::string index_text(T v) {
+  if constexpr (std::is_floating_point_v<T>) {
+    std::ostringstream text;
+    text.precision(17);
+    text << v;
+    return text.str();
+  } else {
+    return std::to_string(v);
+  }
+}
+
+// Faces as integers in [0, vertices) or conform.Error naming the argument, the face and the value: a cast would
+// truncate 3.5 to 3 and wrap 2^32 to 0, a valid index to the wrong vertex.
+template <class T>
+std::vector<Face> checked_faces(const py::array& faces, std::size_t vertices, const std::string& what) {
+  using Typed = py::array_t<T, py::array::c_style | py::array::forcecast>;
+  const Typed a = Typed::ensure(faces);
+  if (!a) throw Error(what + ": faces must be an (F, 3) integer array");
+  const T* data = a.data();
+  const auto limit = static_cast<long double>(vertices);
+  std::vector<Face> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < 3 * out.size(); ++i) {
+    const T v = data[i];
+    const auto fail = [&](const std::string& why) {
+      throw Error(what + " faces[" + std::to_string(i / 3) + ", " + std::to_string(i % 3) + "] = " + index_text(v) +
+                  ": " + why);
+    };
+    if constexpr (std::is_floating_point_v<T>) {
+      if (!std::isfinite(v) || std::trunc(v) != v) fail("not an integer index");
+    }
+    if constexpr (std::is_signed_v<T>) {
+      if (v < 0) fail("a negative vertex index");
+    }
+    if (static_cast<long double>(v) > std::numeric_limits<std::int32_t>::max()) {
+      fail("above the largest index (2^31 - 1)");
+    }
+    if (static_cast<long double>(v) >= limit) fail("not below the vertex count " + std::to_string(vertices));
+    out[i / 3][i % 3] = static_cast<std::int32_t>(v);
+  }
+  return out;
+}
+
+std::vector<Face> faces_of(const py::handle& value, std::size_t vertices, const std::string& what) {
+  const py::array a = py::module_::import("numpy").attr("asarray")(value);
+  if (a.ndim() != 2 || a.shape(1) != 3) {
+    throw Error(what + ": faces must be an (F, 3) integer array, got shape " + shape_text(a));
+  }
+  switch (a.dtype().kind()) {
+    case 'i':
+      return checked_faces<std::int64_t>(a, vertices, what);
+    case 'u':
+      return checked_faces<std::uint64_t>(a, vertices, what);
+    case 'f':
+      return checked_faces<double>(a, vertices, what);
+    default:
+      throw Error(what + ": faces must be an (F, 3) integer array, got dtype " +
+                  py::str(a.dtype()).cast<std::string>());
+  }
 }
 
 bool is_path(const py::handle& value) { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
@@ -92,7 +149,7 @@ std::string Inputs::geometry(const py::handle& value, const char* what) {
     const py::sequence pair = value.cast<py::sequence>();
     if (pair.size() != 2) throw Error(std::string(what) + ": give (vertices, faces), an (N, 3) array or a path");
     mesh.vertices = rows_of(pair[0], std::string(what) + " vertices");
-    mesh.faces = faces_of(pair[1], std::string(what));
+    mesh.faces = faces_of(pair[1], mesh.vertices.size(), std::string(what));
   } else {
     mesh.vertices = rows_of(value, what);
   }

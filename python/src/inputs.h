@@ -30,7 +30,8 @@ class Inputs {
   ~Inputs();
 
   // A str or os.PathLike as it is; a conform.Geometry, an (N,3) array (points) or a (vertices (V,3), faces (F,3))
-  // pair written to a temporary .ply. `what` names the argument in errors. None gives "".
+  // pair written to a temporary .ply. `what` names the argument in errors. None gives "". Face indices must be
+  // integers (integral floats too) in [0, V) and at most 2^31 - 1, or conform.Error names the face and the value.
   std::string geometry(const py::handle& value, const char* what);
   // A path, or a (4,4) array written as a transform file.
   std::string transform(const py::handle& value, const char* what);

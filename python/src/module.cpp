@@ -85,9 +85,12 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   const Progress progress(progress_callback);
   options.progress = progress.function();
   options.keep_geometry = !report_path.empty();
+  CallFiles files({options.scan_path, options.reference_path, options.transform_path},
+                  {options.out_deviation_path, options.out_histogram_path, report_path});
   CompareResult result = released(progress, [&] { return run_compare(options); });
   const nlohmann::json j = compare_json(options, result, units);
   if (!report_path.empty()) write_report(report_path, compare_report(options, result, j, ""));
+  files.commit();
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   arrays["deviation_mm"] = owned(std::move(result.deviation.deviation_mm));
@@ -126,9 +129,12 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   const Progress progress(progress_callback);
   options.progress = progress.function();
   options.keep_geometry = !report_path.empty();
+  CallFiles files({options.scan_path, options.reference_path, init.rfind("pairs:", 0) == 0 ? init.substr(6) : ""},
+                  {options.out_transform_path, options.out_aligned_path, report_path});
   const AlignResult result = released(progress, [&] { return run_align(options); });
   const nlohmann::json j = align_json(result);
   if (!report_path.empty()) write_report(report_path, align_report(options, result, j, ""));
+  files.commit();
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
   return answer(j, arrays);
@@ -161,10 +167,12 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
   o.program.max_points = max_points;
   o.program.five_axis = !three_axis;
   check_export_name(o);
+  CallFiles files({o.path_csv, o.frame_path}, {o.out_path});  // the part files too, when staged
   const ExportJobResult result = [&] {
     py::gil_scoped_release release;
     return run_export(o);
   }();
+  files.commit();
   py::dict arrays;
   arrays["warnings"] = py::cast(export_warnings(result));
   return answer(export_json(o, result), arrays);
@@ -194,10 +202,12 @@ py::tuple job_generate_eroded(const py::object& out, int rows, int cols, double 
   o.noise_mm = noise;
   o.seed = seed;
   options.out_path = path_of(out);
+  CallFiles files({}, {options.out_path});
   const GenerateErodedResult result = [&] {
     py::gil_scoped_release release;
     return run_generate_eroded(options);
   }();
+  files.commit();
   return answer(generate_eroded_json(options, result), py::dict());
 }
 
@@ -234,10 +244,12 @@ py::tuple job_generate_profile(const py::object& out, double length, double widt
   r.scan.seed = seed;
   r.out_path = path_of(out);
   const GenerateProfileOptions options = generate_profile_options(r);
+  CallFiles files({}, {r.out_path});
   const GenerateProfileResult result = [&] {
     py::gil_scoped_release release;
     return run_generate_profile(options);
   }();
+  files.commit();
   return answer(generate_profile_json(result), py::dict());
 }
 
@@ -287,9 +299,11 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
   options.keep_geometry = !report_path.empty();
   const Progress progress(progress_callback);
   options.fit.progress = progress.function();
+  CallFiles files({options.input_path}, {options.out_path, report_path});
   FitCylinderJobResult result = released(progress, [&] { return run_fit_cylinder(options); });
   const nlohmann::json j = fit_cylinder_json(result);
   if (!report_path.empty()) write_report(report_path, fit_cylinder_report(options, result, j, ""));
+  files.commit();
   std::vector<std::uint8_t> inlier(result.points, 0);
   for (int i : result.fit.inliers) inlier[static_cast<std::size_t>(i)] = 1;
   py::dict arrays;
@@ -316,12 +330,14 @@ py::tuple job_saddle(double R, double r, double right_angle_pose_deg, double pit
   request.period_s = period;
   request.out_path = path_of(out);
   const SaddleJobOptions options = saddle_job_options(request);
+  CallFiles files({}, {request.out_path, report_path});
   SaddleJobResult result = [&] {
     py::gil_scoped_release release;
     return run_saddle(options);
   }();
   const nlohmann::json j = saddle_json(request, result);
   if (!report_path.empty()) write_report(report_path, saddle_report(request, options, result));
+  files.commit();
   std::vector<double> theta, pose, step;
   std::vector<Eigen::Vector3d> position;
   for (const SaddlePoint& p : result.saddle.points) {

@@ -58,11 +58,13 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
   options.weld.min_crater_coverage_pct = min_crater_coverage;
   options.out_path = path_of(out);
   options.keep_geometry = !report_path.empty();
+  CallFiles files({options.eroded_path, options.reference_path}, {options.out_path, report_path});
   const WeldLayersJobResult job = [&] {
     py::gil_scoped_release release;
     return run_weld_layers(options);
   }();
   if (!report_path.empty()) write_report(report_path, weld_layers_report(options, job));
+  files.commit();
   // The CSV's rows (layer, path, point, normal), as arrays.
   std::vector<std::int32_t> layer, path;
   std::vector<Eigen::Vector3d> points, normals;
@@ -106,11 +108,14 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
   request.noise_mm = noise;
   ProfileJobOptions options = profile_job_options(request);
   options.keep_geometry = !report_path.empty();
+  CallFiles files({request.edge_path, request.features_path, request.second_edge_path},
+                  {request.out_path, report_path});
   const ProfileJobResult job = [&] {
     py::gil_scoped_release release;
     return run_profile(options);
   }();
   if (!report_path.empty()) write_report(report_path, profile_report(options, job));
+  files.commit();
   // The CSV's rows: the feature (index into `features`), where to cut, the web normal, the cut direction.
   std::vector<std::int32_t> feature;
   std::vector<Eigen::Vector3d> points, normals, directions;
@@ -227,8 +232,12 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   options.keep_geometry = !report_path.empty();
   const Progress progress(take("progress"));
   options.solve.progress = progress.function();
+  CallFiles files({o.leg_path, o.stub_path, o.leg_pose_path, o.leg_markers_path, o.stub_markers_path,
+                   request.groove_table_path},
+                  {o.out_path, o.out_cut, o.out_weld, report_path});
   TubeJointJobResult job = released(progress, [&] { return run_tube_joint(options); });
   if (!report_path.empty()) write_report(report_path, tube_joint_report(options, job));
+  files.commit();
   return answer(tube_joint_json(job), tube_joint_arrays(job.solution));
 }
 
@@ -311,7 +320,9 @@ py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
   GenerateTubeOptions options = generate_tube_options(r);
   const Progress progress(kw.contains("progress") ? py::object(kw["progress"]) : py::object(py::none()));
   options.tube.progress = progress.function();
+  CallFiles files({}, {r.out_path});
   const GenerateTubeResult result = released(progress, [&] { return run_generate_tube(options); });
+  files.commit();
   return answer(generate_tube_json(result), py::dict());
 }
 
@@ -371,8 +382,12 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("normal_smoothing", o.normals.smooth_mm);
   const Progress progress(take("progress"));
   options.progress = progress.function();
+  CallFiles files({options.contour_path, options.scan_path, options.trajectory_path, options.surface_path,
+                   options.truth_path},
+                  {options.out_trajectory_path, options.out_rows_path, report_path});
   SicpJobResult result = released(progress, [&] { return run_sicp(options); });
   if (!report_path.empty()) write_report(report_path, sicp_report(options, result));
+  files.commit();
   const nlohmann::json j = sicp_json(result);
   // The compensated trajectory only when it can be trusted (the CLI writes it only then): empty otherwise.
   Trajectory& t = result.compensation.trajectory;
