@@ -31,8 +31,10 @@ constexpr double kMinEstimatedOverlap = 0.2;
 constexpr double kPoseNoiseShare = 1.5;
 // A stated tolerance +-t asks a pose displacement std of t / 6: three std use at most half of the tolerance.
 constexpr double kToleranceStds = 6.0;
-// The asked displacement std never below 1 um (the ICP's noise floor): a noise-free scan still asks something.
-constexpr double kNoiseFloorMm = 1e-3;
+// The noise the asked displacement std is scaled from is never taken below this, mm: the finest scanners conform
+// serves (metrology-grade handheld and profile scanners) read to about 0.02 mm; a noise-free synthetic scan against
+// a tessellated reference would otherwise be asked for micrometres that the reference's own chords do not give.
+constexpr double kFinestScannerNoiseMm = 0.02;
 // The points the displacement std is evaluated at: an even stride of the scan (its extremes decide it).
 constexpr std::size_t kPoseStdPoints = 5000;
 const char* const kWhatToDo =
@@ -196,7 +198,7 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   v.pose_std_mm = largest_displacement_std_mm(icp.degeneracy, in_reference_frame(scan, icp.T_ref_scan));
   v.pose_tolerance_mm = options.pose_tolerance_mm > 0.0 ? options.pose_tolerance_mm
                         : options.tolerance_mm > 0.0    ? options.tolerance_mm / kToleranceStds
-                                                        : kPoseNoiseShare * std::max(v.expected_noise_mm, kNoiseFloorMm);
+                                                        : kPoseNoiseShare * std::max(v.expected_noise_mm, kFinestScannerNoiseMm);
   if (v.pose_std_mm > v.pose_tolerance_mm) {
     const LooseMotion loose = loosest(icp.degeneracy);
     const std::string known =
@@ -205,7 +207,7 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
                v.pose_std_mm, loose.std_mm, loose.std_deg) +
         format(options.pose_tolerance_mm > 0.0 ? "against the asked %.3g mm"
                : options.tolerance_mm > 0.0    ? "against %.3g mm, a sixth of the tolerance"
-                                               : "against 1.5 times the scan's own noise, %.3g mm",
+                                               : "against 1.5 times the scan's own noise (at least 0.02 mm), %.3g mm",
                v.pose_tolerance_mm);
     if (coarse_start) {
       // Estimated from a start a coarse search found: a fit that loose may sit in a neighbouring minimum (the

@@ -118,7 +118,7 @@ TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_EQ(tiny.exit_code, 2);
   EXPECT_NE(tiny.err.find("segment length must be in [1, 1e5] mm"), std::string::npos) << tiny.err;
   std::string contour = test::read_bytes(dir_.file("p.contour.csv"));
-  contour.insert(contour.find('\n') + 1, "4294967295,0,0\n");
+  contour.insert(contour.find('\n') + 1, "9000000,0,0\n");  // within +-1e7 (csv.h), 9 km off
   test::write_bytes(dir_.file("far_point.csv"), contour);
   auto args = std::vector<std::string>{"sicp",         "--contour", dir_.file("far_point.csv"),
                                        "--scan",       dir_.file("p.ply"),

@@ -155,7 +155,7 @@ TEST(CadSurface, AStepPartFarFromItsScanCoarseAligns) {
 // centroid and 3 predicted std on three seeds (0.0002-0.0004 mm measured; the smooth surface that bulged flat faces
 // next to edges without a crease put it 0.042 mm off). Point-to-plane and plane-to-plane pair with the tessellation's
 // vertices, which lie on its faces' rims only: far worse here (reported, not bounded).
-TEST(CadSurface, DefaultFineFitOnAMachinedPlateLandsOnThePose) {
+TEST(CadSurfaceMatrix, DefaultFineFitOnAMachinedPlateLandsOnThePose) {
   test::TempDir dir;
   const TopoDS_Shape plate = test::ribbed_plate();
   test::write_cad(plate, dir.file("plate.step"), CadFormat::kStep, "MM");

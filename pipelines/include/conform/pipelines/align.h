@@ -73,8 +73,8 @@ struct AlignOptions {
   double free_tolerance_deg = 0.01;
   // The accuracy asked of the pose: the largest predicted displacement std of any scan point
   // (registration/degeneracy.h, largest_displacement_std_mm), mm. 0: from the data and the job: tolerance_mm / 6
-  // when the inspection tolerance is stated (three std use at most half of it), else 1.5 times the scan's own noise
-  // (less than two real scans of one surface disagree by: align_verdict.cpp). A pose from --init pca/fpfh that
+  // when the inspection tolerance is stated (three std use at most half of it), else 1.5 times the scan's own noise,
+  // taken as at least 0.02 mm (less than two real scans of one surface disagree by: align_verdict.cpp). A pose from --init pca/fpfh that
   // misses it is refused, one from a start the user gave is "check".
   double pose_tolerance_mm = 0.0;
   // The inspection tolerance +-t the pose serves (what compare --tolerance will check), mm; 0: not stated.
