@@ -49,6 +49,26 @@ TopoDS_Shape box_with_boss_and_hole() {
   return BRepAlgoAPI_Cut(fused, drill).Shape();
 }
 
+namespace {
+
+// `shape` with a symmetric chamfer of `size_mm` on its edges that run at height z_mm along y = y_mm (both ends).
+TopoDS_Shape chamfer_edges_at(const TopoDS_Shape& shape, double y_mm, double z_mm, double size_mm) {
+  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
+  BRepFilletAPI_MakeChamfer chamfer(shape);
+  for (int i = 1; i <= faces_of_edge.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(faces_of_edge.FindKey(i));
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
+    if (std::abs(a.Z() - z_mm) < 1e-9 && std::abs(b.Z() - z_mm) < 1e-9 && std::abs(a.Y() - y_mm) < 1e-9 &&
+        std::abs(b.Y() - y_mm) < 1e-9) {
+      chamfer.Add(size_mm, size_mm, edge, TopoDS::Face(faces_of_edge.FindFromIndex(i).First()));
+    }
+  }
+  return chamfer.Shape();
+}
+
+}  // namespace
+
 TopoDS_Shape filleted_block() {
   const TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 60.0, 40.0, 20.0).Shape();
   BRepFilletAPI_MakeFillet fillet(block);
@@ -59,19 +79,8 @@ TopoDS_Shape filleted_block() {
     if (std::abs(a.X() - b.X()) < 1e-9 && std::abs(a.Y() - b.Y()) < 1e-9) fillet.Add(10.0, edge);
   }
   const TopoDS_Shape rounded = fillet.Shape();
-  // The chamfer on the top edge along y = 40 (z = 20, y = 40, x running); OCCT carries it along the tangent chain.
-  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
-  TopExp::MapShapesAndAncestors(rounded, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
-  BRepFilletAPI_MakeChamfer chamfer(rounded);
-  for (int i = 1; i <= faces_of_edge.Extent(); ++i) {
-    const TopoDS_Edge& edge = TopoDS::Edge(faces_of_edge.FindKey(i));
-    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
-    if (std::abs(a.Z() - 20) < 1e-9 && std::abs(b.Z() - 20) < 1e-9 && std::abs(a.Y() - 40) < 1e-9 &&
-        std::abs(b.Y() - 40) < 1e-9) {
-      chamfer.Add(4.0, 4.0, edge, TopoDS::Face(faces_of_edge.FindFromIndex(i).First()));
-    }
-  }
-  const TopoDS_Shape chamfered = chamfer.Shape();
+  // The chamfer on the top edge along y = 40; OCCT carries it along the tangent chain, all the way round.
+  const TopoDS_Shape chamfered = chamfer_edges_at(rounded, 40.0, 20.0, 4.0);
   const TopoDS_Shape pocket = BRepPrimAPI_MakeBox(gp_Pnt(8, 8, 15), 16.0, 10.0, 10.0).Shape();
   return BRepAlgoAPI_Cut(chamfered, pocket).Shape();
 }
@@ -84,18 +93,7 @@ TopoDS_Shape ribbed_plate() {
   part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(100, 40, 10), gp::DZ()), 9.0, 12.0).Shape())
              .Shape();
   part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeBox(gp_Pnt(90, 8, 4), 22.0, 14.0, 10.0).Shape()).Shape();
-  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
-  TopExp::MapShapesAndAncestors(part, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
-  BRepFilletAPI_MakeChamfer chamfer(part);
-  for (int i = 1; i <= faces_of_edge.Extent(); ++i) {
-    const TopoDS_Edge& edge = TopoDS::Edge(faces_of_edge.FindKey(i));
-    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
-    if (std::abs(a.Z() - 10) < 1e-9 && std::abs(b.Z() - 10) < 1e-9 && std::abs(a.Y() - 80) < 1e-9 &&
-        std::abs(b.Y() - 80) < 1e-9) {
-      chamfer.Add(3.0, 3.0, edge, TopoDS::Face(faces_of_edge.FindFromIndex(i).First()));
-    }
-  }
-  return chamfer.Shape();
+  return chamfer_edges_at(part, 80.0, 10.0, 3.0);
 }
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }

@@ -30,20 +30,33 @@ Cloud to_cloud(const std::vector<Eigen::Vector3d>& points) {
   return cloud;
 }
 
-// A plane z = 10 sampled on a 21 x 11 grid: var(tz) = sigma^2 / N, var(rx) = sigma^2 / sum (y - y_c)^2,
+// A plane z = 10 sampled on a 21 x 11 grid about (7, -4), normals +z; sxx, syy: the sums of the squared offsets
+// from the centre along x and y.
+struct PlaneGrid {
+  std::vector<Eigen::Vector3d> q, n;
+  double sxx = 0.0, syy = 0.0;
+};
+
+PlaneGrid plane_grid() {
+  PlaneGrid g;
+  for (int i = -10; i <= 10; ++i) {
+    for (int j = -5; j <= 5; ++j) {
+      g.q.emplace_back(3.0 * i + 7.0, 2.0 * j - 4.0, 10.0);
+      g.n.emplace_back(0.0, 0.0, 1.0);
+      g.sxx += 9.0 * i * i;
+      g.syy += 4.0 * j * j;
+    }
+  }
+  return g;
+}
+
+// The grid above: var(tz) = sigma^2 / N, var(rx) = sigma^2 / sum (y - y_c)^2,
 // var(ry) = sigma^2 / sum (x - x_c)^2 (the residual's derivatives are 1, y - y_c and -(x - x_c)); the in-plane motions
 // are unconstrained and held.
 TEST(Constraint, PlaneCovarianceIsTheClosedForm) {
-  std::vector<Eigen::Vector3d> q, n;
-  double sxx = 0.0, syy = 0.0;
-  for (int i = -10; i <= 10; ++i) {
-    for (int j = -5; j <= 5; ++j) {
-      q.emplace_back(3.0 * i + 7.0, 2.0 * j - 4.0, 10.0);
-      n.emplace_back(0.0, 0.0, 1.0);
-      sxx += 9.0 * i * i;
-      syy += 4.0 * j * j;
-    }
-  }
+  const PlaneGrid grid = plane_grid();
+  const std::vector<Eigen::Vector3d>&q = grid.q, &n = grid.n;
+  const double sxx = grid.sxx, syy = grid.syy;
   const double sigma = 0.005, count = static_cast<double>(q.size());
   const DegeneracyReport r = analyze_constraint(plane_normal_matrix(q, n), sigma, 0.02, 0.01 * kDeg);
   EXPECT_NEAR(r.std(5), sigma / std::sqrt(count), 1e-12);
@@ -78,16 +91,9 @@ TEST(Constraint, PlaneCovarianceIsTheClosedForm) {
 // dx^2/sxx) (independent: H is diagonal for the symmetric grid), largest at the corners; the held in-plane motions
 // do not count.
 TEST(Constraint, LargestDisplacementStdIsTheClosedFormOnAPlane) {
-  std::vector<Eigen::Vector3d> q, n;
-  double sxx = 0.0, syy = 0.0;
-  for (int i = -10; i <= 10; ++i) {
-    for (int j = -5; j <= 5; ++j) {
-      q.emplace_back(3.0 * i + 7.0, 2.0 * j - 4.0, 10.0);
-      n.emplace_back(0.0, 0.0, 1.0);
-      sxx += 9.0 * i * i;
-      syy += 4.0 * j * j;
-    }
-  }
+  const PlaneGrid grid = plane_grid();
+  const std::vector<Eigen::Vector3d>&q = grid.q, &n = grid.n;
+  const double sxx = grid.sxx, syy = grid.syy;
   const double sigma = 0.005, count = static_cast<double>(q.size());
   const DegeneracyReport r = analyze_constraint(plane_normal_matrix(q, n), sigma, 0.02, 0.01 * kDeg);
   const auto closed = [&](double dx, double dy) {
