@@ -77,8 +77,7 @@ Neighbours edge_neighbours(const Mesh& mesh, const std::vector<Edge>& edges) {
 // Grows a region from each face not yet taken, largest first (its plane is the best determined), over edges to faces
 // whose three vertices lie on the seed's plane. Returns each face's region (faces without area: a region each).
 std::vector<std::size_t> grow_regions(const Mesh& mesh, const std::vector<Eigen::Vector3d>& unit_normals,
-                                      const std::vector<double>& areas,
-                                      const Neighbours& neighbours) {
+                                      const std::vector<double>& areas, const Neighbours& neighbours) {
   const std::size_t n = mesh.faces.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});

@@ -5,6 +5,7 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <omp.h>
@@ -50,7 +51,8 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
 
 // Fractional ICP's objective at a fit (Phillips et al. 2007, Eq. (3)): its inliers' RMS over their share^lambda.
 double fractional_objective(const IcpResult& r, double lambda) {
-  return r.inlier_fraction > 0.0 ? r.rms_mm / std::pow(r.inlier_fraction, lambda) : std::numeric_limits<double>::infinity();
+  if (!(r.inlier_fraction > 0.0)) return std::numeric_limits<double>::infinity();
+  return r.rms_mm / std::pow(r.inlier_fraction, lambda);
 }
 
 // Fine ICP from `start`. With the overlap estimated and a start the user gave (which may be rough): trimmed to the
@@ -62,13 +64,12 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
                    const Eigen::Isometry3d& start, const IcpOptions& fine, bool rough_start) {
   IcpResult direct = icp(scan, reference, start, fine);
   if (!fine.estimate_overlap || !rough_start) return direct;
-  IcpOptions every_pair = fine;
+  IcpOptions quiet = fine;  // the two further runs report no progress of their own
+  quiet.progress = nullptr;
+  IcpOptions every_pair = quiet;
   every_pair.estimate_overlap = false;
   every_pair.overlap = 1.0;
-  every_pair.progress = nullptr;
   const IcpResult pulled = icp(scan, reference, start, every_pair);
-  IcpOptions quiet = fine;
-  quiet.progress = nullptr;
   IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
   const bool via_better = via.converged && (!direct.converged || fractional_objective(via, fine.overlap_lambda) <
                                                                      fractional_objective(direct, fine.overlap_lambda));
@@ -102,19 +103,12 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   coarse.multi_start.probe.max_iterations = 15;
   coarse.multi_start.probe.progress = nullptr;
   coarse.progress = options.progress;
-  if (reference_mesh.has_faces()) {
-    // Features and scores over the reference's surface at the scan's spacing, not over its vertices
-    // (align_coarse_reference.h): a CAD tessellation's vertices are only on its faces' rims.
-    const double spacing = detail::scan_spacing(scan);
-    if (spacing > 0.0) {
-      const IcpReference surface(detail::coarse_reference(reference_mesh, spacing));
-      result.coarse = coarse_align(scan, surface, coarse);
-    } else {
-      result.coarse = coarse_align(scan, reference, coarse);
-    }
-  } else {
-    result.coarse = coarse_align(scan, reference, coarse);
-  }
+  // Against a mesh, features and scores over its surface at the scan's spacing, not over its vertices
+  // (align_coarse_reference.h): a CAD tessellation's vertices are only on its faces' rims.
+  const double spacing = reference_mesh.has_faces() ? detail::scan_spacing(scan) : 0.0;
+  std::optional<IcpReference> surface;
+  if (spacing > 0.0) surface.emplace(detail::coarse_reference(reference_mesh, spacing));
+  result.coarse = coarse_align(scan, surface ? *surface : reference, coarse);
   result.T_start = result.coarse.T_ref_scan;
   result.start = result.coarse.winner;
   const MultiStartResult& ranking = result.coarse.ranking;

@@ -15,8 +15,8 @@ Mesh coarse_reference(const Mesh& reference, double spacing_mm) {
   const double area = surface_area(reference);
   // One point per spacing^2 of surface: the scan's own density, so that both sides' features see the same support.
   const double wanted = area / (spacing_mm * spacing_mm);
-  const auto count = static_cast<std::size_t>(
-      std::clamp(std::ceil(wanted), 1000.0, static_cast<double>(kCoarseReferenceMaxPoints)));
+  const auto count =
+      static_cast<std::size_t>(std::clamp(std::ceil(wanted), 1000.0, static_cast<double>(kCoarseReferenceMaxPoints)));
   MeshSurfaceSample sample = sample_mesh_surface(reference, count);
   Mesh out;
   out.vertices = std::move(sample.points);

@@ -196,9 +196,10 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   }
   // How well the scan fixes the pose, in mm at the part, against what is asked of it (align.h).
   v.pose_std_mm = largest_displacement_std_mm(icp.degeneracy, in_reference_frame(scan, icp.T_ref_scan));
+  const double noise_based = kPoseNoiseShare * std::max(v.expected_noise_mm, kFinestScannerNoiseMm);
   v.pose_tolerance_mm = options.pose_tolerance_mm > 0.0 ? options.pose_tolerance_mm
                         : options.tolerance_mm > 0.0    ? options.tolerance_mm / kToleranceStds
-                                                        : kPoseNoiseShare * std::max(v.expected_noise_mm, kFinestScannerNoiseMm);
+                                                        : noise_based;
   if (v.pose_std_mm > v.pose_tolerance_mm) {
     const LooseMotion loose = loosest(icp.degeneracy);
     const std::string known =

@@ -41,6 +41,15 @@ bool on_plane(const Eigen::Vector3d& n) {
   return false;
 }
 
+// align's T_ref_scan from its JSON.
+Eigen::Isometry3d transform_of(const nlohmann::json& j) {
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (int row = 0; row < 4; ++row) {
+    for (int col = 0; col < 4; ++col) T(row, col) = j["T_ref_scan"][row][col].get<double>();
+  }
+  return Eigen::Isometry3d(T);
+}
+
 struct Worst {
   double plane_mm = 0.0, fillet_mm = 0.0;
   std::size_t planes = 0, fillets = 0;
@@ -135,11 +144,7 @@ TEST(CadSurface, AStepPartFarFromItsScanCoarseAligns) {
                                                       dir.file("block.step"), "--init", init, "--json"});
     ASSERT_EQ(r.exit_code, 0) << init << r.err << r.out;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-    for (int row = 0; row < 4; ++row) {
-      for (int col = 0; col < 4; ++col) T(row, col) = j["T_ref_scan"][row][col].get<double>();
-    }
-    const Eigen::Isometry3d error(T_ref_scan.inverse().matrix() * T);
+    const Eigen::Isometry3d error = T_ref_scan.inverse() * transform_of(j);
     const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
     const Eigen::Vector3d centre(30, 20, 10);
     const double translation_mm = (error * centre - centre).norm();
@@ -180,11 +185,7 @@ TEST(CadSurfaceMatrix, DefaultFineFitOnAMachinedPlateLandsOnThePose) {
                                                         dir.file("plate.step"), "--method", method, "--json"});
       ASSERT_NE(r.exit_code, 2) << r.err;
       const nlohmann::json j = nlohmann::json::parse(r.out);
-      Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-      for (int row = 0; row < 4; ++row) {
-        for (int col = 0; col < 4; ++col) T(row, col) = j["T_ref_scan"][row][col].get<double>();
-      }
-      const double error_mm = (Eigen::Isometry3d(T) * centre - T_ref_scan * centre).norm();
+      const double error_mm = (transform_of(j) * centre - T_ref_scan * centre).norm();
       const double pose_std_mm = j["verdict"]["pose_std_mm"].get<double>();
       std::printf("plate seed %d, %s: %.5f mm at the centroid, pose std %.5f mm, trust %s\n", static_cast<int>(seed),
                   method, error_mm, pose_std_mm, j["trust"].get<std::string>().c_str());

@@ -61,9 +61,15 @@ TEST(FractionalOverlap, IcpKeepsARightStartWithHalfTheScanOffTheReference) {
     for (std::size_t i = 0; i < n; ++i) {
       const double u = random.uniform(0.0, 200.0), v = random.uniform(0.0, 200.0), e = noise * random.normal();
       switch (i % 3) {
-        case 0: out.emplace_back(u, v, e); break;
-        case 1: out.emplace_back(e, u, v); break;
-        default: out.emplace_back(u, e, v); break;
+        case 0:
+          out.emplace_back(u, v, e);
+          break;
+        case 1:
+          out.emplace_back(e, u, v);
+          break;
+        default:
+          out.emplace_back(u, e, v);
+          break;
       }
     }
   };

@@ -26,8 +26,8 @@ struct CsvTable {
   std::size_t column(std::string_view name) const;
 
   const std::string& text(std::size_t row, std::size_t column) const;
-  // A finite number within +-kMaxMagnitude (core/constants.h). Throws conform::Error "<path>:<line>: column 'name': 'abc' is
-  // not a number" (or not finite, or beyond that bound).
+  // A finite number within +-kMaxMagnitude (core/constants.h). Throws conform::Error
+  // "<path>:<line>: column 'name': 'abc' is not a number" (or not finite, or beyond that bound).
   double number(std::size_t row, std::size_t column) const;
   // A whole number (no decimals). Throws conform::Error like number().
   std::int64_t integer(std::size_t row, std::size_t column) const;

@@ -55,8 +55,9 @@ struct AlignOptions {
   std::string pairs_path;
 
   double max_distance_mm = 0.0;  // ICP's maximum pair distance; 0: kAlignAutoDistanceShare of the reference's box diagonal
-  // Trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]; 0: estimated from the pairs' distances
-  // in every step (fractional ICP, registration/icp_options.h estimate_overlap).
+  // Trimmed ICP: the share of the scan expected to overlap the reference, (0, 1]; 0: estimated from the pairs'
+  // distances in every step against a cloud (fractional ICP, registration/icp_options.h estimate_overlap), every
+  // pair kept against a mesh.
   double overlap = 0.0;
   int max_iterations = 50;
   RobustKernel kernel = RobustKernel::kHuber;
