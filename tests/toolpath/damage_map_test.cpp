@@ -75,6 +75,35 @@ TEST(DamageMap, OffsetAndTiltAreMeasured) {
   EXPECT_LT(std::abs(m.bias_offset_mm), 0.005);
 }
 
+// The patch measured with a small margin: its border lies on the lip's foot, the undamaged surface is only the corners
+// (~20 % of the nodes) and the lip covers more of the grid than it does. The plane comes from the undamaged corners.
+TEST(DamageMap, BiasFromTheUndamagedSurfaceOnlyWhenTheLipCoversMostOfTheGrid) {
+  ErodedOptions o = blade(0.01);
+  o.length_mm = 40.0, o.width_mm = 40.0, o.rows = 41, o.cols = 41;  // 1 mm grid
+  o.chord_radius_mm = 1e6, o.span_radius_mm = 1e6, o.twist_per_mm = 0.0;  // flat
+  o.craters = {Crater{0.0, 0.0, 10.0, 3.0, 0.0, 0.4, 10.0}};  // lip out to 20 mm: the grid's border
+  DamageOptions given;
+  given.outward_side = 1;
+  Networks n = networks(o);
+  DamageMap m = map_damage(n.eroded, n.reference, given);
+  EXPECT_FALSE(m.bias_significant) << m.bias_offset_mm << " mm, " << m.bias_tilt_deg << " deg";  // was 0.112 mm
+  EXPECT_LT(std::abs(m.bias_offset_mm), 0.005);
+  EXPECT_NEAR(m.noise_mm, 0.01, 0.0015);  // was 0.0175: the plane's features left out of the second pass
+  ASSERT_EQ(m.regions.size(), 1u);
+  EXPECT_NEAR(m.max_depth_mm, 3.0, 0.04);
+  o.reference_offset_mm = 0.3;  // a real registration error under the same lip is still measured
+  n = networks(o);
+  m = map_damage(n.eroded, n.reference, given);
+  EXPECT_TRUE(m.bias_significant);
+  EXPECT_NEAR(m.bias_offset_mm, -0.3, 0.005);
+  o.reference_offset_mm = 0.0;
+  o.reference_tilt_deg = 0.5;
+  n = networks(o);
+  m = map_damage(n.eroded, n.reference, given);
+  EXPECT_NEAR(m.bias_tilt_deg, 0.5, 0.02);
+  EXPECT_LT(std::abs(m.bias_offset_mm), 0.01);
+}
+
 TEST(DamageMap, SideByVolumeNotByTheExtremePoint) {
   ErodedOptions o = blade(0.01);
   o.craters = {Crater{0.0, 0.0, 15.0, 2.0}};

@@ -180,6 +180,40 @@ TEST(WeldLayersMatrix, LipsAndBumps) {
   EXPECT_EQ(r.damage.regions.size(), 1u);
 }
 
+// Raised lips that reach the grid's border (the patch measured with a small margin): the undamaged surface is a
+// minority of the nodes, the lips are geometry, not a registration bias. One crater, two craters, a 0.2 mm grid; a
+// real 0.3 mm offset under the same lips is still refused in check mode.
+TEST(WeldLayersMatrix, LipsReachingTheBorderAreNotABias) {
+  struct Lipped {
+    double size_mm, spacing_mm;
+    std::vector<Crater> craters;
+  };
+  const Lipped cases[] = {
+      {40.0, 1.0, {Crater{0.0, 0.0, 10.0, 3.0, 0.0, 0.4, 10.0}}},
+      {40.0, 1.0, {Crater{-9.0, -6.0, 8.0, 2.5, 0.0, 0.4, 8.0}, Crater{9.0, 7.0, 7.0, 2.0, 0.0, 0.3, 8.0}}},
+      {24.0, 0.2, {Crater{0.0, 0.0, 6.0, 2.5, 0.0, 0.4, 6.0}}},
+  };
+  for (const Lipped& l : cases) {
+    SCOPED_TRACE(l.spacing_mm);
+    SCOPED_TRACE(l.craters.size());
+    Case c = base_case(0.01);
+    c.blade.length_mm = c.blade.width_mm = l.size_mm;
+    c.blade.rows = c.blade.cols = static_cast<int>(std::lround(l.size_mm / l.spacing_mm)) + 1;
+    c.blade.chord_radius_mm = c.blade.span_radius_mm = 1e6, c.blade.twist_per_mm = 0.0;
+    c.blade.craters = l.craters;
+    c.weld.outward_side = 1;  // lip and crater volumes are alike here: the side is given, as the job asks
+    const WeldLayerResult r = plan(c);
+    EXPECT_FALSE(r.damage.bias_significant) << r.damage.bias_offset_mm << " mm";
+    EXPECT_LT(std::abs(r.damage.bias_offset_mm), 0.01);
+    expect_refilled(c, r);
+    c.blade.reference_offset_mm = 0.3;
+    const WeldLayerResult shifted = plan(c);
+    EXPECT_FALSE(shifted.ok);
+    EXPECT_NE(shifted.termination.find("offset"), std::string::npos) << shifted.termination;
+    EXPECT_NEAR(shifted.damage.bias_offset_mm, -0.3, 0.01);
+  }
+}
+
 TEST(WeldLayersMatrix, NoiseLevels) {
   for (const double noise : {0.0, 0.05, 0.1}) {
     SCOPED_TRACE(noise);

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
@@ -64,8 +65,57 @@ struct Plane {
   double at(const Eigen::Vector3d& p) const { return a + b.x() * (p - centre).dot(e1) + b.y() * (p - centre).dot(e2); }
 };
 
-// Step 2: d = a + b . (p - centre) in the plane across the mean normal, least squares on the agreeing nodes.
-Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistances& s) {
+// Least squares d = a + b . (p - centre) over the nodes marked `in`; false when they do not determine a plane.
+bool fit_plane(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& d, const std::vector<bool>& in,
+               Plane* plane) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!in[i]) continue;
+    const Eigen::Vector3d x(1.0, (points[i] - plane->centre).dot(plane->e1), (points[i] - plane->centre).dot(plane->e2));
+    A += x * x.transpose();
+    rhs += x * d[i];
+    ++n;
+  }
+  if (n < 3) return false;
+  const Eigen::Vector3d sol = A.ldlt().solve(rhs);
+  if (!sol.allFinite()) return false;
+  plane->a = sol[0], plane->b = sol.tail<2>();
+  return true;
+}
+
+// The level most residuals agree on: the fullest bin of width `bin` (smoothed over 3 bins), refined to the mean of
+// the residuals within one bin of it. A lip or a crater floor is a smaller level than the undamaged surface.
+double residual_mode(const std::vector<double>& residual, double bin) {
+  if (residual.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(residual.begin(), residual.end());
+  const int bins = std::min(static_cast<int>((*hi - *lo) / bin) + 1, 100000);
+  const double width = std::max(bin, (*hi - *lo) / bins);
+  std::vector<std::size_t> count(static_cast<std::size_t>(bins) + 2, 0);
+  for (double x : residual) ++count[static_cast<std::size_t>(std::min(static_cast<int>((x - *lo) / width), bins - 1)) + 1];
+  std::size_t best = 1, best_count = 0;
+  for (std::size_t k = 1; k + 1 < count.size(); ++k) {
+    const std::size_t c = count[k - 1] + 2 * count[k] + count[k + 1];
+    if (c > best_count) best = k, best_count = c;
+  }
+  const double centre = *lo + (static_cast<double>(best) - 0.5) * width;
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (double x : residual) {
+    if (std::abs(x - centre) <= width) sum += x, ++n;
+  }
+  return n > 0 ? sum / static_cast<double>(n) : centre;
+}
+
+// Step 2: the bias plane from the undamaged surface only. d = a + b . (p - centre) in the plane across the mean
+// normal: a trimmed least-squares start (3 robust sigmas around the median), then a band around the mode of the
+// residuals shrunk by halves down to `band` (3 noise sigmas) and refitted, and last a fit on the band's nodes that are
+// at least `margin` nodes away from every feature (a node beyond `feature` from the plane: a crater, lip or bump). So
+// raised material and the foot of a crater's slope stay out of it however much of the grid they cover, as long as
+// the undamaged surface is the most common level.
+Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistances& s, int rows, int cols,
+                 double band, double feature, int margin) {
   Plane plane;
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();
   std::size_t n = 0;
@@ -83,27 +133,56 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
   }
   plane.a = median_of(valid_d);  // a robust start: the level most nodes agree on
   std::vector<bool> in(points.size(), false);
-  for (int iteration = 0; iteration < 8; ++iteration) {
+  auto residuals = [&] {
     std::vector<double> residual;
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (s.valid[i]) residual.push_back(s.d[i] - plane.at(points[i]));
     }
-    const double centre = median_of(residual), limit = std::max(3.0 * robust_sigma(residual), 1e-9);
+    return residual;
+  };
+  double limit = 0.0;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    const std::vector<double> residual = residuals();
+    const double centre = median_of(residual);
+    limit = std::max(3.0 * robust_sigma(residual), 1e-9);
     for (std::size_t i = 0; i < points.size(); ++i) {
       in[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i]) - centre) <= limit;
     }
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!in[i]) continue;
-      const Eigen::Vector3d x(1.0, (points[i] - plane.centre).dot(plane.e1), (points[i] - plane.centre).dot(plane.e2));
-      A += x * x.transpose();
-      rhs += x * s.d[i];
-    }
-    const Eigen::Vector3d sol = A.ldlt().solve(rhs);
-    if (!sol.allFinite()) break;
-    plane.a = sol[0], plane.b = sol.tail<2>();
+    if (!fit_plane(points, s.d, in, &plane)) break;
   }
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    limit = std::max(0.5 * limit, band);
+    const double mode = residual_mode(residuals(), band / 3.0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      in[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i]) - mode) <= limit;
+    }
+    const Plane before = plane;
+    if (!fit_plane(points, s.d, in, &plane)) return before;
+    if (limit == band && std::abs(plane.a - before.a) < 1e-3 * band && (plane.b - before.b).norm() < 1e-6) break;
+  }
+  // Away from the features: dilate them by `margin` nodes (a square, rows then columns) and fit on the rest of the band.
+  auto at = [&](int r, int c) { return static_cast<std::size_t>(r * cols + c); };
+  std::vector<char> near(points.size(), 0), along_rows(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) near[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i])) > feature;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      for (int k = std::max(0, c - margin); k <= std::min(cols - 1, c + margin) && !along_rows[at(r, c)]; ++k) {
+        along_rows[at(r, c)] = near[at(r, k)];
+      }
+    }
+  }
+  std::vector<bool> quiet = in;
+  std::size_t quiet_nodes = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      bool touched = false;
+      for (int k = std::max(0, r - margin); k <= std::min(rows - 1, r + margin) && !touched; ++k) touched = along_rows[at(k, c)];
+      quiet[at(r, c)] = quiet[at(r, c)] && !touched;
+      quiet_nodes += quiet[at(r, c)];
+    }
+  }
+  Plane refined = plane;
+  if (quiet_nodes >= std::max<std::size_t>(16, n / 20) && fit_plane(points, s.d, quiet, &refined)) return refined;
   return plane;
 }
 
@@ -112,7 +191,7 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
 // median up when craters cover a good share of the grid: a second pass leaves out the nodes beyond 6 first-pass sigmas
 // from the bias plane (and their neighbours), the features, and takes the median over the rest.
 double local_noise(const std::vector<double>& d, const std::vector<double>& plane, const std::vector<bool>& valid,
-                   int rows, int cols) {
+                   int rows, int cols, bool second_pass = true) {
   auto at = [&](int r, int c) { return static_cast<std::size_t>(r * cols + c); };
   auto sigma = [&](const std::vector<bool>& use) {
     std::vector<double> magnitude;
@@ -126,6 +205,7 @@ double local_noise(const std::vector<double>& d, const std::vector<double>& plan
     return magnitude.size() < 8 ? -1.0 : kNormalSigma * median_of(std::move(magnitude)) / std::sqrt(1.25);
   };
   const double first = std::max(sigma(valid), 0.0);
+  if (!second_pass) return first;
   std::vector<bool> quiet = valid;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
@@ -221,6 +301,7 @@ bool DamageOptions::IsValid(std::string* error) const {
   if (!(min_threshold_mm >= 0.0) || !std::isfinite(min_threshold_mm)) return fail("minimum threshold must be >= 0 mm");
   if (outward_side < -1 || outward_side > 1) return fail("outward side must be -1, 0 (from the data) or +1");
   if (!(bias_tolerance_mm >= 0.0) || !std::isfinite(bias_tolerance_mm)) return fail("bias tolerance must be >= 0 mm");
+  if (!(bias_margin_mm >= 0.0) || bias_margin_mm > 1000.0) return fail("bias margin must be in [0, 1000] mm");
   if (!(side_ratio_min >= 1.0) || !std::isfinite(side_ratio_min)) return fail("side ratio must be >= 1");
   if (!(max_deviation_mm > 0.0) || !std::isfinite(max_deviation_mm)) return fail("max deviation must be > 0 mm");
   return true;
@@ -237,12 +318,19 @@ DamageMap map_damage(const BezierNetwork& eroded, const BezierNetwork& reference
     for (int c = 0; c < map.cols; ++c) points.push_back(eroded.position(c, r));
   }
   map.off_reference = static_cast<std::size_t>(std::count(s.valid.begin(), s.valid.end(), false));
-  const Plane plane = bias_plane(points, s);
+  // The noise before the plane (its first pass needs none) sets the band the plane is fitted in.
+  const std::vector<double> zero(points.size(), 0.0);
+  const double first_noise = local_noise(s.d, zero, s.valid, map.rows, map.cols, false);
+  const double spacing = std::max(eroded.derivative(0.5 * map.cols, 0.5 * map.rows, 1, 0).norm(), 1e-9);
+  const double floor = 0.25 * std::max(options.min_threshold_mm, 1e-6);
+  const Plane plane = bias_plane(points, s, map.rows, map.cols, std::max(3.0 * first_noise, floor),
+                                 std::max(options.noise_factor * first_noise, options.min_threshold_mm),
+                                 std::max(1, static_cast<int>(std::ceil(options.bias_margin_mm / spacing))));
   std::vector<double> plane_at;
   for (const Eigen::Vector3d& p : points) plane_at.push_back(plane.at(p));
   map.noise_mm = local_noise(s.d, plane_at, s.valid, map.rows, map.cols);
   for (const Eigen::Vector3d& p : points) map.bias_span_mm = std::max(map.bias_span_mm, std::abs(plane.at(p)));
-  map.bias_tilt_deg = std::atan(plane.b.norm()) * 180.0 / M_PI;
+  map.bias_tilt_deg = std::atan(plane.b.norm()) * 180.0 / kPi;
   map.bias_significant = map.bias_span_mm > std::max(options.bias_tolerance_mm, 3.0 * map.noise_mm);
   map.bias_removed = options.bias == BiasMode::kRemove;
   std::vector<double> d = s.d;

@@ -3,9 +3,11 @@
 // paper, Simas/Dias/Guenther section 2, takes the damaged area as given by the intersection):
 //   1. the signed distance d of every eroded grid node from the reference along its normal r_u x r_v (closest point by
 //      Newton from the nearest reference node, a kd-tree: O(n log n));
-//   2. registration bias: a plane d = a + b.(p - c) fitted to d by least squares on the nodes that agree with it
-//      (trimmed at 3 robust sigmas, repeated): the damage, a minority, does not pull it. Its offset and tilt are
-//      reported; BiasMode says whether a significant one fails the job, is subtracted from d or kept;
+//   2. registration bias: a plane d = a + b.(p - c) fitted to d by least squares on the undamaged surface only: the
+//      nodes within 3 noise sigmas of the most common level (a band shrunk onto the mode of the residuals) and at
+//      least bias_margin_mm away from every feature. Craters, lips and bumps do not pull it, however much of the grid
+//      they cover, as long as the undamaged surface is the most common level. Its offset and tilt are reported;
+//      BiasMode says whether a significant one fails the job, is subtracted from d or kept;
 //   3. noise: 1.4826 x the median absolute local residual of d (d minus the mean of its 4 neighbours, divided by
 //      sqrt(5/4) for white noise). A smooth lip, bump or crater barely changes a local residual and the median ignores
 //      the few it does: features cannot inflate the estimate;
@@ -39,6 +41,7 @@ struct DamageOptions {
                                      // r_u x r_v; -1: on the other side
   BiasMode bias = BiasMode::kCheck;
   double bias_tolerance_mm = 0.05;   // a bias plane that moves no node by more than this (or 3 noise) is not reported
+  double bias_margin_mm = 2.0;       // the bias plane is fitted this far from every feature (crater, lip, bump)
   double side_ratio_min = 2.0;       // volumes of the two sides closer than this: ambiguous
   double max_deviation_mm = 100.0;   // a node farther than this from the reference: bad input (the grids differ)
 
