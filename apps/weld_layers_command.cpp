@@ -31,7 +31,12 @@ class WeldLayersCommand : public Command {
     c.add_option("--layer-height", o_.weld.layer_height_mm, "Layer height cd, mm; required")->required();
     c.add_option("--chord-error", o_.weld.chord_error_mm, "Max chord error delta of a path step, mm; required")
         ->required();
-    c.add_option("--torch-distance", o_.weld.torch_distance_mm, "Torch-to-surface distance w (Eq. 5), mm");
+    c.add_option("--torch-distance", o_.weld.torch_distance_mm,
+                 "Torch standoff w along the normal, mm (the beads are planned on the surface whatever it is)");
+    c.add_option("--bead-width", o_.weld.bead_width_mm,
+                 "Bead width on the surface for coverage and overlap, mm; 0 = the bead spacing");
+    c.add_option("--max-overlap", o_.weld.max_overlap_mm,
+                 "Most path length of a layer within half a bead of another of its paths, mm; beyond: exit 1");
     c.add_option("--layers", o_.weld.layers, "Number of layers; 0 = ceil((max depth - threshold) / layer height)")
         ->check(CLI::Range(0, kMaxWeldLayers));
     c.add_option("--depth-threshold", o_.weld.depth_threshold_mm,
@@ -99,16 +104,22 @@ class WeldLayersCommand : public Command {
                 d.side_from_data ? "from the data" : "given");
     std::printf("craters       %zu\n", d.regions.size());
     for (const DamageRegion& r : d.regions) {
-      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s\n", r.id, r.max_depth_mm,
+      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s", r.id, r.max_depth_mm,
                   r.deepest.x(), r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
+      const std::size_t i = static_cast<std::size_t>(r.id - 1);
+      if (i < w.crater_coverage_pct.size()) std::printf(", layer 1 covers %.1f %%", w.crater_coverage_pct[i]);
+      std::printf("\n");
     }
     std::printf("rims          %zu (%zu closed along the border)", w.rims.size(), w.border_rims);
     for (std::size_t k = 0; k < w.rims.size() && k < 6; ++k) std::printf(" (%.3f mm)", w.rims[k].length_mm());
     if (w.rims.size() > 6) std::printf(" ...");
     std::printf(", %zu open pieces\n", w.open_curves);
     if (w.layers == 0) return;
-    std::printf("damage cover  %.2f %% (damaged nodes within half a bead width of a layer-1 path)\n",
-                w.damage_coverage_pct);
+    std::printf("damage cover  %.2f %% (damaged nodes within half a bead width, %.3f mm, of a layer-1 path)\n",
+                w.damage_coverage_pct, 0.5 * w.bead_width_mm);
+    std::printf("overlap mm    ");
+    for (double mm : w.overlap_mm) std::printf(" %.1f", mm);
+    std::printf("  (by layer: path length within half a bead of another path of the layer)\n");
     std::printf("layers        %d, paths %zu (%zu half-step paths before clipping)\n", w.layers, w.paths.size(),
                 w.half_step_paths);
     std::printf("length        %.3f mm in total\n", w.total_length_mm);

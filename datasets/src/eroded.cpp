@@ -30,7 +30,12 @@ bool ErodedOptions::IsValid(std::string* error) const {
     if (!(c.inner_radius_mm >= 0.0) || !(c.inner_radius_mm < c.radius_mm)) {
       return fail("crater inner radius must be in [0, radius)");
     }
-    if (c.depth_mm > 0.5 * half_width) return fail("crater depth must be at most half its (half-)width (a smooth pit)");
+    if (!(c.radius_y_mm >= 0.0) || !std::isfinite(c.radius_y_mm) ||
+        (c.radius_y_mm > 0.0 && (c.inner_radius_mm > 0.0 || c.lip_mm > 0.0))) {
+      return fail("crater y radius must be >= 0 mm (an elongated crater has no inner radius and no lip)");
+    }
+    const double narrowest = c.radius_y_mm > 0.0 ? std::min(half_width, c.radius_y_mm) : half_width;
+    if (c.depth_mm > 0.5 * narrowest) return fail("crater depth must be at most half its (half-)width (a smooth pit)");
     if (!(c.lip_mm >= 0.0) || !(c.lip_width_mm >= 0.0) || !std::isfinite(c.lip_mm + c.lip_width_mm) ||
         (c.lip_mm > 0.0 && !(c.lip_width_mm > 0.0))) {
       return fail("crater lip height and width must be >= 0 mm (a width when there is a lip)");
@@ -70,7 +75,10 @@ double crater_depth(const ErodedOptions& o, double x, double y) {
   double depth = 0.0;
   for (const Crater& c : o.craters) {
     const double rho = std::hypot(x - c.x_mm, y - c.y_mm);
-    if (c.inner_radius_mm > 0.0) {
+    if (c.radius_y_mm > 0.0) {
+      const double qx = (x - c.x_mm) / c.radius_mm, qy = (y - c.y_mm) / c.radius_y_mm;
+      depth = std::max(depth, pit(c.depth_mm, std::sqrt(qx * qx + qy * qy), 1.0));
+    } else if (c.inner_radius_mm > 0.0) {
       const double h = 0.5 * (c.radius_mm - c.inner_radius_mm);
       depth = std::max(depth, pit(c.depth_mm, rho - (c.inner_radius_mm + h), h));
     } else {
@@ -113,7 +121,8 @@ ErodedScan generate_eroded(const ErodedOptions& o) {
     std::vector<Eigen::Vector3d> rim;
     for (int i = 0; i < o.rim_points; ++i) {
       const double t = 2.0 * M_PI * i / o.rim_points;
-      rim.push_back(blade_point(o, c.x_mm + c.radius_mm * std::cos(t), c.y_mm + c.radius_mm * std::sin(t)));
+      const double ry = c.radius_y_mm > 0.0 ? c.radius_y_mm : c.radius_mm;
+      rim.push_back(blade_point(o, c.x_mm + c.radius_mm * std::cos(t), c.y_mm + ry * std::sin(t)));
     }
     scan.rims.push_back(std::move(rim));
     scan.max_depth_mm = std::max(scan.max_depth_mm, c.depth_mm);

@@ -39,7 +39,10 @@ nlohmann::json weld_layers_json(const WeldLayersJobOptions& options, const WeldL
                        {"deepest_mm", {r.deepest.x(), r.deepest.y(), r.deepest.z()}},
                        {"deepest_row", r.deepest_row},
                        {"deepest_col", r.deepest_col},
-                       {"at_border", r.at_border}});
+                       {"at_border", r.at_border},
+                       {"coverage_pct", static_cast<std::size_t>(r.id - 1) < w.crater_coverage_pct.size()
+                                            ? nlohmann::json(w.crater_coverage_pct[static_cast<std::size_t>(r.id - 1)])
+                                            : nlohmann::json(nullptr)}});
   }
   nlohmann::json bias = {{"offset_mm", d.bias_offset_mm}, {"tilt_deg", d.bias_tilt_deg},
                          {"span_mm", d.bias_span_mm},     {"significant", d.bias_significant},
@@ -59,6 +62,7 @@ nlohmann::json weld_layers_json(const WeldLayersJobOptions& options, const WeldL
           {"regions_without_rim", w.regions_without_rim},
           {"cusps_removed", w.cusps_removed},
           {"max_paths_reached", w.max_paths_reached},
+          {"lines_turned_back", w.lines_turned_back},
           {"path_crossings", w.path_crossings},
           {"crossings_cut", w.crossings_cut},
           {"intersection_box_pairs", w.box_pairs},
@@ -70,6 +74,10 @@ nlohmann::json weld_layers_json(const WeldLayersJobOptions& options, const WeldL
           {"chord_error_mm_max", w.chord_error_mm_max},
           {"coverage_pct_min", w.coverage_pct_min},
           {"coverage_pct_by_layer", w.coverage_pct},
+          {"bead_width_mm", w.bead_width_mm},
+          {"overlap_mm_by_layer", w.overlap_mm},
+          {"overlap_mm_max", w.overlap_mm_max},
+          {"max_overlap_mm", options.weld.max_overlap_mm},
           {"noise_mm", w.noise_mm},
           {"depth_threshold_mm", w.depth_threshold_mm},
           {"depth_threshold_estimated", w.threshold_estimated},

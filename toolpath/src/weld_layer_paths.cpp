@@ -183,7 +183,7 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   }
   ParallelPathOptions po;
   po.spacing_mm = 0.5 * dc;
-  po.torch_distance_mm = options.torch_distance_mm;
+  po.torch_distance_mm = 0.0;  // planned on the surface: g = dc / 2 (not Eq. 5 at the torch: its offset surface folds)
   po.chord_error_mm = options.chord_error_mm;
   po.max_step_mm = options.max_step_mm > 0.0 ? options.max_step_mm : 2.0 * dc;
   const ParameterDomain d = s.smooth.domain();
@@ -205,20 +205,32 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
   plan.half_step_paths = half.paths.size();
   plan.loops_removed = half.loops_removed;
   plan.newton_offsets = half.newton_offsets;
-  plan.max_paths_reached = half.termination == "max_paths reached";
-  for (std::size_t j = 0; j + 1 < half.paths.size(); ++j) {
+  // The family crosses the region once. After it has left (two half-step lines in a row with no point inside), later
+  // lines are parallels turning back over the region in a bowl (their loops cut): they would lay beads over beads.
+  std::size_t lines = half.paths.size();
+  bool seen = false;
+  int empty = 0;
+  for (std::size_t j = 0; j < half.paths.size() && lines == half.paths.size(); ++j) {
+    const std::vector<Eigen::Vector2d>& uv = half.paths[j].uv;
+    bool any = false;
+    for (std::size_t i = 0; i < uv.size() && !any; ++i) {
+      any = s.inside(uv[i]) || (i + 1 < uv.size() && s.inside(0.5 * (uv[i] + uv[i + 1])));
+    }
+    empty = any ? 0 : empty + 1;
+    seen = seen || any;
+    if (seen && empty >= 2) lines = j + 1;
+  }
+  plan.lines_turned_back = half.paths.size() - lines;
+  plan.max_paths_reached = half.termination == "max_paths reached" && lines == half.paths.size();
+  for (std::size_t j = 0; j + 1 < lines; ++j) {
     const double e = spacing_error_pct_max(s.smooth, half.paths[j], half.paths[j + 1],
                                            [&](const Eigen::Vector2d& uv) { return s.inside(uv); });
     plan.spacing_error_pct_max = std::max(plan.spacing_error_pct_max, e);
   }
   const double ds = std::min(0.25 * dc, 0.5 * std::min(su, sv));
+  const double bead_width = options.bead_width_mm > 0.0 ? options.bead_width_mm : dc;
   ParallelPathOptions step = po;
-  for (std::size_t j = (k % 2 == 1) ? 1 - shift : shift; j < half.paths.size(); j += 2) {
-    std::vector<double> g;  // the path's spacing on the surface (Eq. 5) where it crosses the region: its bead width
-    for (std::size_t i = 0; i < half.paths[j].uv.size(); ++i) {
-      if (i < half.paths[j].spacing_mm.size() && s.inside(half.paths[j].uv[i])) g.push_back(half.paths[j].spacing_mm[i]);
-    }
-    const double bead_width = g.empty() ? dc : 2.0 * median_of(std::move(g));
+  for (std::size_t j = (k % 2 == 1) ? 1 - shift : shift; j < lines; j += 2) {
     for (std::vector<Eigen::Vector2d>& run : clip_along(half.paths[j], s, ds)) {
       std::vector<Eigen::Vector3d> points;
       for (const Eigen::Vector2d& uv : run) points.push_back(s.raw.position(uv.x(), uv.y()));
@@ -231,6 +243,7 @@ LayerPlan plan_layer(const BezierNetwork& eroded, const DamageMap& map, int regi
       path.layer = k;
       path.region = region;
       path.bead_width_mm = bead_width;
+      path.line = static_cast<int>(j);
       path.points = stepped.points;
       for (const Eigen::Vector2d& uv : stepped.uv) path.normals.push_back(po.normal_sign * s.smooth.normal(uv.x(), uv.y()));
       plan.paths.push_back(std::move(path));

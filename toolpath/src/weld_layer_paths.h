@@ -16,6 +16,7 @@ struct LayerPlan {
   double chord_error_mm_max = 0.0;
   double spacing_error_pct_max = 0.0;
   bool max_paths_reached = false;
+  std::size_t lines_turned_back = 0;  // half-step lines dropped after the family left the region
   std::size_t crossings_cut = 0;  // segments dropped where a path crossed an earlier one of the layer
 };
 

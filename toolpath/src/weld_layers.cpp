@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "conform/core/csv.h"
@@ -61,6 +62,42 @@ class PathCloud {
   std::vector<double> radius_;
   std::unique_ptr<KdTree> tree_;
 };
+
+// The length of each path of one layer within `radius` of another line of the layer (pieces of one half-step line are
+// one bead): beads laid over beads. Sampled every radius / 4 along the paths.
+double overlap_length(const std::vector<const WeldPath*>& layer, double radius) {
+  std::vector<Eigen::Vector3d> dense;
+  std::vector<int> line;
+  const double step = 0.25 * radius;
+  auto densify = [&](const WeldPath& path, const std::function<void(const Eigen::Vector3d&, double)>& visit) {
+    for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+      const Eigen::Vector3d a = path.points[i], b = path.points[i + 1];
+      const int pieces = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+      for (int k = 0; k < pieces; ++k) visit(a + (b - a) * ((k + 0.5) / pieces), (b - a).norm() / pieces);
+    }
+  };
+  for (const WeldPath* path : layer) {
+    densify(*path, [&](const Eigen::Vector3d& x, double) { dense.push_back(x), line.push_back(path->line); });
+    dense.push_back(path->points.back()), line.push_back(path->line);
+  }
+  if (dense.empty()) return 0.0;
+  const KdTree tree(dense);
+  double length = 0.0;
+  std::vector<int> index;
+  std::vector<float> d2;
+  for (const WeldPath* path : layer) {
+    densify(*path, [&](const Eigen::Vector3d& x, double piece) {
+      tree.radius(x.cast<float>(), static_cast<float>(radius), index, d2);
+      bool other = false;
+      for (std::size_t k = 0; k < index.size() && !other; ++k) {
+        other = line[static_cast<std::size_t>(index[k])] != path->line &&
+                std::sqrt(static_cast<double>(d2[k])) < radius;
+      }
+      if (other) length += piece;
+    });
+  }
+  return length;
+}
 
 // Step 2: the rims, eroded against the reference offset inward by the threshold (and by the bias when removed).
 void find_rims(const BezierNetwork& eroded, const BezierNetwork& reference, const WeldLayerOptions& options,
@@ -215,6 +252,14 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
                            std::to_string(n) + " times");
       }
     }
+    const double overlap = overlap_length(layer, 0.5 * result->bead_width_mm);
+    result->overlap_mm.push_back(overlap);
+    result->overlap_mm_max = std::max(result->overlap_mm_max, overlap);
+    if (overlap > options.max_overlap_mm) {
+      failures.push_back("layer " + std::to_string(k) + ": " + fixed(overlap, 1) + " mm of its paths lie within half a bead (" +
+                         fixed(0.5 * result->bead_width_mm, 2) + " mm) of another of its paths (beads over beads; " +
+                         "limit " + fixed(options.max_overlap_mm, 1) + " mm)");
+    }
     if (k != 1) continue;
     for (const DamageRegion& region : map.regions) {
       std::vector<Eigen::Vector3d> own;
@@ -224,6 +269,7 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
         }
       }
       const double own_pct = cloud.covered_pct(own);
+      result->crater_coverage_pct.push_back(own_pct);
       if (own_pct >= options.min_coverage_pct) continue;
       const std::string text = where(region) + ": layer 1 covers " + fixed(own_pct, 1) + " % of it";
       if (region.area_mm2 >= options.bead_spacing_mm * options.bead_spacing_mm &&
@@ -241,7 +287,10 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
   if (result->open_curves > 0) {
     result->warnings.push_back(std::to_string(result->open_curves) + " rim pieces end inside the grid (broken rims)");
   }
-  if (result->max_paths_reached) failures.push_back("max paths reached: the plan is partial");
+  if (result->max_paths_reached) {
+    failures.push_back("max paths reached: the plan is partial (the half-step paths did not cross the crater: a bead "
+                       "spacing too small for its size, or paths that turn back in a tight bowl)");
+  }
   if (result->damage_coverage_pct < options.min_coverage_pct) {
     failures.push_back("layer 1 covers " + fixed(result->damage_coverage_pct, 1) + " % of the damage (minimum " +
                        fixed(options.min_coverage_pct, 1) + " %)");
@@ -277,6 +326,8 @@ bool WeldLayerOptions::IsValid(std::string* error) const {
   if (!std::isfinite(depth_threshold_mm) || depth_threshold_mm > 1000.0) return fail("depth threshold must be finite");
   if (outward_side < -1 || outward_side > 1) return fail("outward side must be -1, 0 (from the data) or +1");
   if (!(min_coverage_pct >= 0.0 && min_coverage_pct <= 100.0)) return fail("minimum coverage must be in [0, 100] %");
+  if (!(bead_width_mm >= 0.0) || bead_width_mm > 100.0) return fail("bead width must be in [0, 100] mm (0: the spacing)");
+  if (!(max_overlap_mm >= 0.0) || !std::isfinite(max_overlap_mm)) return fail("max overlap must be >= 0 mm");
   if (!(min_crater_coverage_pct >= 0.0 && min_crater_coverage_pct <= 100.0)) {
     return fail("minimum crater coverage must be in [0, 100] %");
   }
@@ -319,6 +370,7 @@ WeldLayerResult plan_weld_layers(const BezierNetwork& eroded, const BezierNetwor
                 std::to_string(kMaxWeldLayers) + "): raise --layer-height");
   }
   result.layers = options.layers > 0 ? options.layers : std::max(1, static_cast<int>(needed));
+  result.bead_width_mm = options.bead_width_mm > 0.0 ? options.bead_width_mm : options.bead_spacing_mm;
   find_rims(eroded, reference, options, &result);
   std::vector<std::vector<Eigen::Vector3d>> layer_nodes(static_cast<std::size_t>(result.layers));
   result.paths_per_layer.assign(static_cast<std::size_t>(result.layers), 0);
@@ -335,6 +387,7 @@ WeldLayerResult plan_weld_layers(const BezierNetwork& eroded, const BezierNetwor
       result.spacing_error_pct_max = std::max(result.spacing_error_pct_max, plan.spacing_error_pct_max);
       result.max_paths_reached = result.max_paths_reached || plan.max_paths_reached;
       result.crossings_cut += plan.crossings_cut;
+      result.lines_turned_back += plan.lines_turned_back;
       for (WeldPath& path : plan.paths) {
         path.path = ++result.paths_per_layer[static_cast<std::size_t>(k - 1)];
         result.total_length_mm += path.length_mm();

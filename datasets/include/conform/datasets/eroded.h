@@ -26,6 +26,8 @@ struct Crater {
   double inner_radius_mm = 0.0;   // b: > 0 makes a ring-shaped crater over b < rho < a
   double lip_mm = 0.0;            // L: height of a raised lip beyond the rim
   double lip_width_mm = 0.0;      // w: its width (> 0 when L > 0)
+  double radius_y_mm = 0.0;       // > 0: an elongated (elliptic) crater, semi-axes radius_mm along x and this along y:
+                                  // depth = D (1 - q)^3, q = (dx / a)^2 + (dy / a_y)^2 (no ring, no lip)
 };
 
 struct Bump {
@@ -42,7 +44,7 @@ struct ErodedOptions {
   double chord_radius_mm = 150.0;  // R_chord: curvature radius along x
   double span_radius_mm = 400.0;   // R_span: curvature radius along y
   double twist_per_mm = 0.002;     // twist: z += twist x y (1/mm)
-  std::vector<Crater> craters = {Crater{}};
+  std::vector<Crater> craters = std::vector<Crater>(1);  // one default crater (no initializer list: GCC 12 warns)
   std::vector<Bump> bumps;
   double reference_offset_mm = 0.0;  // the reference grid moved along +z
   double reference_tilt_deg = 0.0;   // and tilted about the y axis (z += tan(tilt) x)
