@@ -80,7 +80,7 @@ endfunction()
 
 # conform_add_tests(<module> DEPS <targets...>)
 # One GoogleTest executable per tests/<module>/<name>_test.cpp (one test file per unit), so a unit builds and runs
-# on its own; ctest labels them with the module.
+# on its own; ctest labels them with the module, and the target <module>_tests builds all of them.
 function(conform_add_tests module)
   cmake_parse_arguments(ARG "" "" "DEPS;DEFINITIONS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp)
@@ -98,5 +98,9 @@ function(conform_add_tests module)
     target_compile_definitions(${target} PRIVATE ${ARG_DEFINITIONS})
     conform_depend_on_plugins(${target})
     gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
+    if(NOT TARGET ${module}_tests)
+      add_custom_target(${module}_tests)
+    endif()
+    add_dependencies(${module}_tests ${target})
   endforeach()
 endfunction()
