@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include "align_coarse_reference.h"
+#include "align_consistency.h"
 #include "align_inputs.h"
 #include "align_verdict.h"
 #include "conform/core/error.h"
@@ -277,6 +278,16 @@ AlignResult run_align(const AlignOptions& options) {
   // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
   if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;
   result.icp = fine_fit(scan, reference, result.T_start, fine, options.init == AlignInit::kNone);
+  if (!reference_mesh.has_faces() && result.icp.converged) {
+    // Against another scan the fit's bias is not in its linearised covariance: measured by fitting the reference to
+    // the scan (align_consistency.h) and added to it.
+    report(options.progress, "consistency", 0.0);
+    const detail::InverseConsistency consistency =
+        detail::inverse_consistency(scan, reference_mesh.vertices, result.icp, fine);
+    detail::add_consistency_bias(consistency, result.icp.degeneracy);
+    result.inverse_consistency_mm = consistency.ran ? consistency.largest_displacement_mm : -1.0;
+    report(options.progress, "consistency", 1.0);
+  }
   result.verdict = detail::judge_alignment(scan, reference, options, result);
   if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
   if (options.keep_geometry) {

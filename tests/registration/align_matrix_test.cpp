@@ -53,6 +53,7 @@ using RightFn = std::function<bool(const Trial&, const AlignResult&)>;
 struct Tally {
   int right = 0, refused = 0, wrong_accepted = 0;
   int start_right = 0;  // the coarse step's pose (where fine ICP started) within the bounds
+  int honest = 0;       // seeds whose error is within 3 predicted std on every axis (error_in_std)
 };
 
 void write_points(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
@@ -147,9 +148,10 @@ Tally run_matrix(const char* name, const std::function<Trial(int)>& make, const 
     tally.right += ok && accepted;
     tally.refused += !accepted;
     tally.wrong_accepted += !ok && accepted;
+    tally.honest += error_in_std(t, r) <= 3.0;
   }
-  std::printf("  %s: %d right, %d refused, %d wrong and accepted; coarse pose right %d\n", name, tally.right,
-              tally.refused, tally.wrong_accepted, tally.start_right);
+  std::printf("  %s: %d right, %d refused, %d wrong and accepted; coarse pose right %d; error within 3 std %d\n",
+              name, tally.right, tally.refused, tally.wrong_accepted, tally.start_right, tally.honest);
   return tally;
 }
 
@@ -176,24 +178,22 @@ Trial workpiece_trial(int seed, const Eigen::Isometry3d& T_ref_part, double nois
   return t;
 }
 
-// The accuracy asked of a 0.2 mm-noise profiler scan of the workpiece (--pose-tolerance-mm): a pose a coarse search
-// found is trusted only when the fine fit fixes every scan point this well (align_verdict.cpp). On these noisy cloud
-// references the error reaches 8-17 times the predicted std (neighbouring minima near sparse walls, 0.5-2.8 mm off),
-// and right and wrong poses have the same predicted displacement std (0.15-0.6 mm on streams 0-2): no threshold tied
-// to the noise separates them, so the test asks what a user of a profiler would state: 0.2 mm (right poses from
-// 0.149 mm, the least wrong one 0.254 mm over streams 0-2). At the defaults (1.5 x the scan's noise, 0.42 mm here)
-// wrong poses are accepted on this synthetic stand-in (docs/align.md, Verdict, Limits).
-void profiler_tolerance(AlignOptions& options) { options.pose_tolerance_mm = 0.2; }
+// The workpiece cases run at the defaults: the accuracy asked of the pose is sqrt(3) times the scan's or the fit's
+// noise, and against these noisy golden-sample clouds the predicted std carries the fit's bias measured by the
+// inverse-consistency check (pipelines/src/align_consistency.h). Without that bias, 19 of the 60 noisy-case seeds
+// over streams 0-2 ended wrong with exit 0 at the defaults; the errors reached 6-17 predicted std. `honest`: seeds
+// whose error is within 3 std on every axis.
 
 TEST(AlignMatrixWorkpiece, PartialScans) {
   const Tally t = run_matrix(
       "workpiece", [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.2, 0.0); },
-      within(1.0, 1.0), profiler_tolerance);
+      within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10, 9, 9 on streams 0, 1, 2 (CONFORM_MATRIX_STREAM)
-  // Measured 6, 4, 2 on streams 0, 1, 2 at --pose-tolerance-mm 0.2 (3, 1, 2 at the former per-axis tolerances): the
-  // rest refused, none wrong. The bound is the least of the three: a change that accepts no right pose fails.
+  // Measured 3, 2, 2 on streams 0, 1, 2: the rest refused, none wrong. The bound is the least of the three: a change
+  // that accepts no right pose fails.
   EXPECT_GE(t.right, 2);
+  EXPECT_GE(t.honest, 7);  // measured 10, 7, 9
 }
 
 // The golden sample in shop coordinates: 100 m from the origin, turned; the scan in the scanner's frame.
@@ -202,21 +202,23 @@ TEST(AlignMatrixWorkpiece, ShopFrameCoordinates) {
   T_shop_part.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.1, 0.2, 1.0).normalized()).toRotationMatrix();
   T_shop_part.translation() = Eigen::Vector3d(96000.0, -25000.0, 1200.0);
   const Tally t = run_matrix(
-      "shop frame", [&](int seed) { return workpiece_trial(seed, T_shop_part, 0.2, 0.0); }, within(1.0, 1.0),
-      profiler_tolerance);
+      "shop frame", [&](int seed) { return workpiece_trial(seed, T_shop_part, 0.2, 0.0); }, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 9);  // measured 10
-  EXPECT_GE(t.right, 2);        // measured 6, 4, 2 on streams 0, 1, 2 at 0.2 mm (3, 2, 2 at the per-axis tolerances)
+  EXPECT_GE(t.right, 3);        // measured 4, 3, 3 on streams 0, 1, 2
+  EXPECT_GE(t.honest, 8);       // measured 10, 9, 8
 }
 
 TEST(AlignMatrixWorkpiece, NoiseAndOutliers) {
   const Tally t = run_matrix(
       "noise and outliers", [](int seed) { return workpiece_trial(seed, Eigen::Isometry3d::Identity(), 0.5, 0.05); },
-      within(1.0, 1.0), profiler_tolerance);
+      within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
   // Measured 4 and 6 on two RANSAC streams (PCL's RANSAC: 8; 1 without the outlier removal); with conform's own FPFH
   // 5, 5, 5 on streams 0, 1, 2.
   EXPECT_GE(t.start_right, 3);
+  EXPECT_GE(t.right, 1);   // measured 3, 1, 3
+  EXPECT_GE(t.honest, 7);  // measured 7, 7, 10
 }
 
 // A coarse profiler pitch: steep walls (0.3 mm run) under points ~2 mm apart, so that the walls, the only thing
@@ -231,9 +233,10 @@ TEST(AlignMatrixWorkpiece, SparseWalls) {
     t.reference = workpiece_samples(sparse);
     return t;
   };
-  const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0), profiler_tolerance);
+  const Tally t = run_matrix("sparse walls", make, within(1.0, 1.0));
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.start_right, 4);  // measured 5 (PCL's RANSAC: 6); with conform's own FPFH 6, 7, 5 on streams 0, 1, 2
+  EXPECT_GE(t.honest, 7);       // measured 7, 9, 8; right and accepted 0, 1, 1
 }
 
 // Random points on a cylinder's side (axis z, centred), radius r, length l, over `arc` radians, with radial noise.

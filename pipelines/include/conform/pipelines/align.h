@@ -73,10 +73,11 @@ struct AlignOptions {
   double free_tolerance_mm = 0.02;
   double free_tolerance_deg = 0.01;
   // The accuracy asked of the pose: the largest predicted displacement std of any scan point
-  // (registration/degeneracy.h, largest_displacement_std_mm), mm. 0: from the data and the job: tolerance_mm / 6
-  // when the inspection tolerance is stated (three std use at most half of it), else 1.5 times the scan's own noise,
-  // taken as at least 0.02 mm (less than two real scans of one surface disagree by: align_verdict.cpp). A pose from --init pca/fpfh that
-  // misses it is refused, one from a start the user gave is "check".
+  // (registration/degeneracy.h, largest_displacement_std_mm; against a cloud with the fit's bias, AlignVerdict), mm.
+  // 0: from the data and the job: tolerance_mm / 6 when the inspection tolerance is stated (three std use at most
+  // half of it), else sqrt(3) times the larger of the scan's own noise and the fit's residual noise, taken as at least
+  // 0.02 mm (align_verdict.cpp). A pose from --init pca/fpfh that misses it is refused, one from a start the user
+  // gave is "check".
   double pose_tolerance_mm = 0.0;
   // The inspection tolerance +-t the pose serves (what compare --tolerance will check), mm; 0: not stated.
   double tolerance_mm = 0.0;
@@ -89,7 +90,7 @@ struct AlignOptions {
   std::string out_transform_path;  // T_ref_scan, 4x4 text (mm); empty: not written
   std::string out_aligned_path;    // the scan in the reference frame (mm), mesh or cloud as read; empty: not written
 
-  ProgressFn progress;  // stages "read scan", "read reference", "normals", "coarse: ...", "icp", "write"
+  ProgressFn progress;  // stages "read scan", "read reference", "normals", "coarse: ...", "icp", "consistency", "write"
   bool keep_geometry = false;  // keep the scan and the reference (mm, as read) in the result, for a report
 
   bool IsValid(std::string* error) const;
@@ -112,7 +113,9 @@ struct AlignVerdict {
   double fit_noise_mm = 0.0;         // the residuals' robust std at the result (icp.degeneracy.noise_mm)
   double noise_ratio = 0.0;          // fit / expected
   double overlap = 0.0;              // the share of the scan within the maximum distance and kept (inlier fraction)
-  double pose_std_mm = 0.0;          // the largest predicted displacement std of a scan point (estimated motions)
+  // The largest predicted displacement std of a scan point (estimated motions), with the inverse-consistency bias
+  // (AlignResult::inverse_consistency_mm) added in quadrature against a cloud reference.
+  double pose_std_mm = 0.0;
   double pose_tolerance_mm = 0.0;    // what was asked of it (AlignOptions::pose_tolerance_mm, resolved)
   std::vector<std::string> reasons;  // why not kYes, one sentence each
   std::string summary;               // one line: whether to trust the pose and why
@@ -127,6 +130,10 @@ struct AlignResult {
   PointPairsResult pairs;  // kPairs: the transform and each pair's residual
   Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();  // where fine ICP started
   double max_distance_mm = 0.0;                               // as used
+  // Against a cloud reference: the largest displacement of a scan point between the fit and the same fit with the
+  // roles swapped (the inverse-consistency check, a measure of the fit's bias; added to icp.degeneracy's
+  // covariance), mm; 0 against a mesh, -1 when the swapped fit did not converge.
+  double inverse_consistency_mm = 0.0;
   std::size_t scan_points = 0;                                // read (finite)
   std::size_t scan_points_used = 0;                           // after merging duplicates and thinning
   std::size_t reference_points = 0;
