@@ -345,6 +345,34 @@ TEST(WeldLayersMatrix, StandoffsZeroToTenMillimetres) {
   EXPECT_GE(right, 12);  // the plans must be made, not only refused
 }
 
+// Coverage is counted with the stated bead width (default the spacing) and per crater: the three-crater blade of the
+// docs, whose smallest crater (0.95 mm deep) has rim slivers between path ends. The reported figures must not exceed
+// the truth's (before, beads 2g wide counted 91 % where 63-68 % were covered), and a crater below the minimum is exit 1.
+TEST(WeldLayersMatrix, CoverageWithTheStatedBeadWidthPerCrater) {
+  Case c = base_case(0.01);
+  c.blade.craters = {Crater{0.0, 0.0, 15.0, 2.0}, Crater{35.0, 10.0, 8.0, 1.0}, Crater{55.0, -30.0, 10.0, 1.5}};
+  c.weld.torch_distance_mm = 2.0;
+  WeldLayerResult r = plan(c);
+  ASSERT_TRUE(r.ok) << r.termination;
+  EXPECT_DOUBLE_EQ(r.bead_width_mm, 3.0);
+  ASSERT_EQ(r.crater_coverage_pct.size(), 3u);
+  const Bars bars = measure_bars(c, r);
+  const double smallest = *std::min_element(r.crater_coverage_pct.begin(), r.crater_coverage_pct.end());
+  // Never more than the truth's figures (those count nodes 4 sigma past the threshold, the job's every damaged node).
+  EXPECT_LE(smallest, bars.crater_pct_min + 1.0);
+  EXPECT_LE(r.damage_coverage_pct, bars.coverage_pct + 1.0);
+  EXPECT_LT(smallest, 90.0);  // slivers at the rim: the bead is no wider than its spacing
+  EXPECT_GE(smallest, 85.0);
+  c.weld.min_crater_coverage_pct = 90.0;
+  r = plan(c);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.termination.find("layer 1 covers"), std::string::npos) << r.termination;
+  c.weld.bead_width_mm = 3.6;  // beads wider than their spacing, as laid: every crater covered
+  r = plan(c);
+  EXPECT_TRUE(r.ok) << r.termination;
+  for (const double pct : r.crater_coverage_pct) EXPECT_GE(pct, 99.0);
+}
+
 TEST(WeldLayersMatrix, GridSpacings) {
   for (const double spacing : {0.2, 1.0, 4.0}) {
     SCOPED_TRACE(spacing);
