@@ -65,6 +65,10 @@ class TubeJointCommand : public Command {
     c.add_option("--island-ratio", o_.solve.max_island_ratio,
                  "Intersection loops shorter than this fraction of the longest are dropped as noise islands; "
                  "longer ones fail");
+    c.add_option("--weld-tolerance", o_.solve.weld_edge_fraction,
+                 "Vertices closer than this fraction of a mesh's median edge length are welded into one (unwelded "
+                 "scanner meshes); 0 = only coincident ones")
+        ->check(CLI::Range(0.0, 0.25));
     c.add_option("--wall-thickness", walls_,
                  "Wall thickness, mm: one value for both, or LEG_MM,STUB_MM; checks every tool tip and approach line "
                  "against the walls (exit 1 when a tool is inside material)");

@@ -66,6 +66,8 @@ bool TubeJointSolveOptions::IsValid(std::string* error) const {
     why = "the largest facet error must be > 0 mm";
   } else if (!(max_island_ratio >= 0.0 && max_island_ratio < 1.0)) {
     why = "the island ratio must be in [0, 1)";
+  } else if (!(weld_edge_fraction >= 0.0 && weld_edge_fraction <= 0.25)) {
+    why = "the weld tolerance must be in [0, 0.25] of the median edge";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -123,10 +125,22 @@ void measure_written_path(const std::vector<PathFrame>& frames, SampledPath* pat
 MainCurve intersect_and_select(const Mesh& leg_L, const Mesh& stub_S, const Eigen::Isometry3d& T_S_L,
                                const TubeJointSolveOptions& options, TubeJointSolution* solution, Mesh* leg_S,
                                Mesh* stub) {
-  MeshWeldResult leg = weld_coincident_vertices(leg_L, "leg mesh");
-  MeshWeldResult welded_stub = weld_coincident_vertices(stub_S, "stub mesh");
+  solution->leg_weld_tolerance_mm = options.weld_edge_fraction * median_edge_length(leg_L);
+  solution->stub_weld_tolerance_mm = options.weld_edge_fraction * median_edge_length(stub_S);
+  MeshWeldResult leg = weld_near_vertices(leg_L, solution->leg_weld_tolerance_mm, "leg mesh");
+  MeshWeldResult welded_stub = weld_near_vertices(stub_S, solution->stub_weld_tolerance_mm, "stub mesh");
   solution->leg_welded_vertices = leg.merged_vertices;
   solution->stub_welded_vertices = welded_stub.merged_vertices;
+  const MeshWeldResult* welded[2] = {&leg, &welded_stub};
+  const double tolerance[2] = {solution->leg_weld_tolerance_mm, solution->stub_weld_tolerance_mm};
+  for (int k = 0; k < 2; ++k) {
+    if (welded[k]->merged_vertices == 0) continue;
+    solution->warnings.push_back(std::string(k == 0 ? "leg" : "stub") + " mesh: " +
+                                 std::to_string(welded[k]->merged_vertices) + " vertices welded into others within " +
+                                 format_fixed(tolerance[k], 4) + " mm (" +
+                                 format_fixed(100.0 * options.weld_edge_fraction, 1) + " % of the median edge; " +
+                                 std::to_string(welded[k]->dropped_faces) + " faces collapsed)");
+  }
   *leg_S = posed(leg.mesh, T_S_L);
   *stub = std::move(welded_stub.mesh);
   const MeshIntersectionResult cut = intersect_meshes(*leg_S, *stub, options.intersection);

@@ -45,6 +45,8 @@ void add_robustness(const TubeJointJobResult& r, nlohmann::json* j) {
   (*j)["warnings"] = s.warnings;
   (*j)["leg_welded_vertices"] = s.leg_welded_vertices;
   (*j)["stub_welded_vertices"] = s.stub_welded_vertices;
+  (*j)["leg_weld_tolerance_mm"] = s.leg_weld_tolerance_mm;
+  (*j)["stub_weld_tolerance_mm"] = s.stub_weld_tolerance_mm;
   (*j)["islands"] = s.islands;
   (*j)["longest_island_mm"] = s.longest_island_mm;
   (*j)["merged_vertices"] = s.merged_vertices;

@@ -21,4 +21,13 @@ struct MeshWeldResult {
 // for a mesh without coincident vertices. Throws conform::Error for an inconsistent mesh.
 MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& what);
 
+// The median length of the mesh's edges (each face's three, shared edges counted per face), mm; 0 without faces.
+double median_edge_length(const Mesh& mesh);
+
+// Welds vertices closer than `tolerance_mm` (an unwelded scanner mesh: a seam's vertices duplicated a few microns
+// apart). Vertices are taken in index order; each joins the nearest earlier kept vertex within the tolerance (no
+// chains: a kept vertex never moves), else it is kept. Faces that collapse are dropped, as are faces that become
+// duplicates of an earlier face. tolerance_mm <= 0: as weld_coincident_vertices. Same mesh, same result.
+MeshWeldResult weld_near_vertices(const Mesh& mesh, double tolerance_mm, const std::string& what);
+
 }  // namespace conform

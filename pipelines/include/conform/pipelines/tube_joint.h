@@ -41,6 +41,9 @@ struct TubeJointSolveOptions {
   // The facets alone can put the seam (s_leg + s_stub) / sin(beta) off, s = edge^2 x curvature / 8 the facet
   // sagitta of each scan near the seam: above this the meshes are too coarse for a path (exit 1, [coarse]).
   double max_facet_error_mm = 5.0;
+  // Vertices closer than this fraction of a mesh's median edge length are one vertex (scanner meshes come unwelded:
+  // a seam's vertices duplicated microns apart, which would be an open end (1a)). 0: only coincident ones. [0, 0.25].
+  double weld_edge_fraction = 0.01;
   PathSamplingOptions sampling;          // azimuth or arc-length step; smoothing (applied before the azimuth test)
   JointGeometryOptions geometry;         // k nearest vertices per PCA normal
   ToolPathOptions tools;                 // groove angles, weld angle, standoffs
@@ -62,6 +65,8 @@ struct TubeJointSolution {
   // Mesh welding (core/mesh_weld.h) before the intersection.
   std::size_t leg_welded_vertices = 0;
   std::size_t stub_welded_vertices = 0;
+  double leg_weld_tolerance_mm = 0.0;   // weld_edge_fraction x the mesh's median edge length
+  double stub_weld_tolerance_mm = 0.0;
   // Intersection figures.
   std::size_t segments = 0;          // triangle-pair segments
   std::size_t curve_vertices = 0;    // welded graph vertices
