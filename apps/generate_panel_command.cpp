@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "conform/pipelines/generate_panel_json.h"
@@ -45,6 +46,13 @@ class GeneratePanelCommand : public Command {
                  "Smooth seeded non-rigid field: at most this along the surface normal (z), half of it in the plane, "
                  "mm");
     c.add_option("--field-wavelength", o_.field_wavelength_mm, "The field's shortest wavelength, mm");
+    c.add_flag("!--no-flank-scan", o_.scan_flank,
+               "One-sided scan: the band on the material side only, not the opening's flank");
+    c.add_option("--stray", o_.stray_fraction,
+                 "Share of the scan moved 1-20 mm off the surface (stray points), in [0, 0.2]");
+    c.add_option("--rotation-deg", rotation_, "The part's rigid motion: rotation vector, degrees (3 numbers)")
+        ->expected(3);
+    c.add_option("--translation", translation_, "The part's rigid motion: translation, mm (3 numbers)")->expected(3);
     c.add_option("--seed", o_.seed, "Seed of the scan's sampling, noise and missing parts");
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
     c.add_flag("--quiet", quiet_, "No progress on stderr");
@@ -54,6 +62,9 @@ class GeneratePanelCommand : public Command {
     GeneratePanelOptions options;
     options.panel = o_;
     options.panel.opening = plate_opening(opening_);
+    if (rotation_.size() == 3) options.panel.rotation_deg = Eigen::Vector3d(rotation_[0], rotation_[1], rotation_[2]);
+    if (translation_.size() == 3)
+      options.panel.translation_mm = Eigen::Vector3d(translation_[0], translation_[1], translation_[2]);
     options.out_path = out_;
     options.panel.progress = stderr_progress(quiet_);
     const GeneratePanelResult r = run_generate_panel(options);
@@ -85,6 +96,9 @@ class GeneratePanelCommand : public Command {
     c.add_option("--opening", opening_, "The opening: ellipse (porthole) or rectangle (corners --corner-radius)")
         ->check(CLI::IsMember({"ellipse", "rectangle"}));
     c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the rectangle's corners, mm (0: sharp)");
+    c.add_option("--dent", o_.dent_depth_mm, "A dent at the opening's edge: its depth into the part, mm (0: none)");
+    c.add_option("--dent-width", o_.dent_width_mm, "The dent's full width (4 sigma of its Gaussian profile), mm");
+    c.add_option("--dent-at", o_.dent_at, "Where the dent is: the angle about the opening's centre, share of a turn");
   }
 
   void configure_nosecone(CLI::App& c) {
@@ -99,6 +113,7 @@ class GeneratePanelCommand : public Command {
   }
 
   PanelOptions o_;
+  std::vector<double> rotation_, translation_;
   std::string opening_ = "ellipse";
   std::string out_;
   bool json_ = false;

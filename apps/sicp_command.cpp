@@ -65,6 +65,9 @@ class SicpCommand : public Command {
     c.add_option("--max-edge-gap", o.checks.max_edge_gap_mm,
                  "Longest stretch of path without scan of the edge that is bridged from the measured rows on both "
                  "sides (no corner in it), mm; longer: its rows are untrusted");
+    c.add_option("--max-edge-offset", o.checks.max_edge_offset_mm,
+                 "Where the scan shows its own edge (no flank scanned), rows farther than this across from it are "
+                 "untrusted, mm");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-offset", o.checks.max_offset_mm,

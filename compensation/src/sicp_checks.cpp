@@ -150,6 +150,39 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
   row.across_mm = d.dot(axis.cross(tangent));
 }
 
+// Each row's distance across the edge from the scan's own edge points (SicpResult::scan_edge) within the window: the
+// median, in the surface, perpendicular to the path. A row farther than max_edge_offset_mm loses its confidence.
+void judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Trajectory& t, bool closed,
+                       const SicpCheckOptions& o, SicpCheck& c) {
+  if (scan_edge.empty()) return;
+  const KdTree tree(scan_edge);
+  std::vector<int> indices;
+  std::vector<float> sq;
+  const std::size_t n = t.points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t next = i + 1 < n ? i + 1 : (closed ? 0 : n - 1);
+    const std::size_t previous = i > 0 ? i - 1 : (closed ? n - 1 : 0);
+    Eigen::Vector3d tangent = t.points[next] - t.points[previous];
+    tangent -= tangent.dot(t.normals[i]) * t.normals[i];
+    if (tangent.norm() < 1e-12) continue;
+    const Eigen::Vector3d across = t.normals[i].cross(tangent.normalized());
+    tree.radius(t.points[i].cast<float>(), static_cast<float>(o.edge_window_mm), indices, sq);
+    if (indices.size() < 5) continue;
+    std::vector<double> offsets;
+    for (int k : indices) offsets.push_back((scan_edge[static_cast<std::size_t>(k)] - t.points[i]).dot(across));
+    const double offset = median(offsets);
+    c.rows[i].edge_offset_mm = offset;
+    c.max_edge_offset_mm = std::max(c.max_edge_offset_mm, std::abs(offset));
+    if (std::abs(offset) > o.max_edge_offset_mm) ++c.off_edge_rows;
+  }
+  if (c.off_edge_rows > 0)
+    c.warnings.push_back(std::to_string(c.off_edge_rows) + " rows lie more than " +
+                         format_fixed(o.max_edge_offset_mm, 2) + " mm across from where the scan's face ends (up to " +
+                         format_fixed(c.max_edge_offset_mm, 2) +
+                         " mm): the registration did not find the edge there; scan the opening's flank, or more "
+                         "densely along the edge");
+}
+
 // The warnings of blind, bare and outlier segments and far rows, each saying what to change.
 void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c) {
   if (!c.blind_segments.empty())
@@ -187,6 +220,10 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
     why = "edge radius must be > 0 mm";
   else if (!std::isfinite(max_edge_gap_mm) || max_edge_gap_mm < 0.0)
     why = "largest bridged gap of the edge scan must be >= 0 mm";
+  else if (!std::isfinite(max_edge_offset_mm) || max_edge_offset_mm <= 0.0)
+    why = "largest offset of the path from the scan's edge must be > 0 mm";
+  else if (!std::isfinite(edge_window_mm) || edge_window_mm <= 0.0)
+    why = "edge window must be > 0 mm";
   if (why == nullptr) return true;
   if (error != nullptr) *error = why;
   return false;
@@ -248,6 +285,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   }
   const std::vector<double> support =
       by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c) : std::vector<double>(c.rows.size(), 1.0);
+  judge_edge_offset(r.scan_edge, compensated, closed, o, c);
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
@@ -257,6 +295,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       row.confidence *= (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
+    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm) row.confidence = 0.0;
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
     c.min_confidence = std::min(c.min_confidence, row.confidence);
   }
@@ -268,6 +307,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
     c.reason = std::to_string(c.untrusted_rows) + " of " + std::to_string(c.rows.size()) +
                " rows have a confidence below " + format_fixed(o.min_confidence, 2) + " (" +
                (c.far_rows > 0                       ? "rows far from the contour"
+                : c.off_edge_rows > 0                ? "rows away from the scan's edge"
                 : c.unmeasured_rows > c.bridged_rows ? "rows without scan of the edge that cannot be bridged"
                                                      : "segments fitting badly or without data") +
                "; see the warnings)";

@@ -34,6 +34,7 @@ Edge make_edge(const PanelOptions& o) {
 struct SurfaceGrid {
   Mesh mesh;
   std::vector<double> tau, depth_from_edge;
+  std::vector<bool> flank_face;
 };
 
 SurfaceGrid make_surface(const PanelOptions& o, const Edge& edge) {
@@ -66,10 +67,12 @@ SurfaceGrid make_surface(const PanelOptions& o, const Edge& edge) {
     for (int i = 0; i < rows; ++i) {  // normals along the surface normal (panel_shape.cpp: tau runs counter-clockwise)
       g.mesh.faces.push_back({index(j, i), index(j, i + 1), index(j + 1, i)});
       g.mesh.faces.push_back({index(j + 1, i), index(j, i + 1), index(j + 1, i + 1)});
+      g.flank_face.insert(g.flank_face.end(), 2, false);
     }
     for (int k = 0; k < flank_rows; ++k) {  // normals into the opening
       g.mesh.faces.push_back({flank(j, k), flank(j + 1, k), flank(j, k + 1)});
       g.mesh.faces.push_back({flank(j + 1, k), flank(j + 1, k + 1), flank(j, k + 1)});
+      g.flank_face.insert(g.flank_face.end(), 2, true);
     }
   }
   return g;
@@ -130,9 +133,10 @@ bool in_arc(const std::vector<std::pair<double, double>>& arcs, double tau) {
 }
 
 // Area-uniform points on the nominal surface, deformed, with Gaussian noise along the deformed normal; the points in
-// missing arcs (near the edge) and holes are left out.
+// missing arcs (near the edge) and holes are left out, and so is the flank of a one-sided scan. A stray point is
+// moved 1-20 mm along the normal, either way.
 void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, PanelData& data) {
-  Random pick(o.seed, 1), noise(o.seed, 2), layout(o.seed, 3);
+  Random pick(o.seed, 1), noise(o.seed, 2), layout(o.seed, 3), stray(o.seed, 4);
   data.missing_arcs = missing_arcs(o, total_tau, layout);
   std::vector<Eigen::Vector3d> hole_centres;
   for (int h = 0; h < o.holes; ++h) hole_centres.push_back(g.mesh.vertices[layout.below(g.mesh.vertices.size())]);
@@ -150,15 +154,18 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
     const auto V = [&](int c) { return g.mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])]; };
     const Eigen::Vector3d p = V(0) + u * (V(1) - V(0)) + v * (V(2) - V(0));
     const double z = noise.normal();  // drawn for every point, so that holes do not shift the others' noise
+    const bool is_stray = stray.uniform() < o.stray_fraction;
+    const double offset = (stray.uniform() < 0.5 ? -1.0 : 1.0) * stray.uniform(1.0, 20.0);
     const auto v0 = static_cast<std::size_t>(t[0]);
     bool removed = in_arc(data.missing_arcs, g.tau[v0]) && g.depth_from_edge[v0] <= o.missing_depth_mm;
+    removed = removed || (!o.scan_flank && g.flank_face[f]);
     for (const Eigen::Vector3d& c : hole_centres) removed = removed || (p - c).norm() < o.hole_radius_mm;
     if (removed) {
       ++data.scan_points_removed;
       continue;
     }
     const Eigen::Vector3d n = deform_normal(o, p, face_normal(g.mesh, f));
-    const Eigen::Vector3d q = deform_point(o, p) + o.noise_mm * z * n;
+    const Eigen::Vector3d q = deform_point(o, p) + (o.noise_mm * z + (is_stray ? offset : 0.0)) * n;
     data.scan.points.push_back(
         pcl::PointXYZ(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())));
   }

@@ -124,6 +124,18 @@ Eigen::Vector3d smooth_field(const PanelOptions& o, const Eigen::Vector3d& p) {
   return o.field_mm * Eigen::Vector3d(0.5 * d.x(), 0.5 * d.y(), d.z());
 }
 
+// The dent's centre on the plate's opening (panel_options.h: dent_at): on the ellipse at that parameter angle, on
+// the rectangle where the ray meets its sides (the rounded corners left aside).
+Eigen::Vector2d dent_centre(const PanelOptions& o) {
+  const double a = 0.5 * o.porthole_width_mm, b = o.round ? a : 0.5 * o.porthole_height_mm;
+  const double t = 2.0 * M_PI * o.dent_at;
+  const Eigen::Vector2d d(std::cos(t), std::sin(t));
+  if (o.opening == PlateOpening::kEllipse) return {o.porthole_x_mm + a * d.x(), o.porthole_y_mm + b * d.y()};
+  const double reach = std::min(std::abs(d.x()) > 1e-12 ? a / std::abs(d.x()) : 1e300,
+                                std::abs(d.y()) > 1e-12 ? b / std::abs(d.y()) : 1e300);
+  return Eigen::Vector2d(o.porthole_x_mm, o.porthole_y_mm) + reach * d;
+}
+
 // Normalised deflection of a uniformly loaded simply supported beam, 1 at mid-span, 0 at the supports.
 double beam(double xi) { return 16.0 / 5.0 * (xi - 2.0 * xi * xi * xi + xi * xi * xi * xi); }
 
@@ -132,7 +144,12 @@ Eigen::Vector3d displacement(const PanelOptions& o, const Eigen::Vector3d& p) {
     const double xi = p.x() / o.clamp_span_mm + 0.5;
     const double u = 2.0 * p.x() / o.clamp_span_mm;
     const double v = 2.0 * (p.y() - o.porthole_y_mm) / (o.round ? o.porthole_width_mm : o.porthole_height_mm);
-    return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v) +
+    double dent = 0.0;
+    if (o.dent_depth_mm != 0.0) {  // Gaussian, sigma a quarter of the full width
+      const double sigma = 0.25 * o.dent_width_mm;
+      dent = o.dent_depth_mm * std::exp(-(p.head<2>() - dent_centre(o)).squaredNorm() / (2.0 * sigma * sigma));
+    }
+    return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v - dent) +
            smooth_field(o, p);
   }
   const double theta = std::atan2(p.y(), p.z());

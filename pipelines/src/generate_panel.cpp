@@ -31,6 +31,8 @@ nlohmann::json options_json(const PanelOptions& o) {
                       {"translation_mm", vector_json(o.translation_mm)},
                       {"field_mm", o.field_mm},
                       {"field_wavelength_mm", o.field_wavelength_mm},
+                      {"scan_flank", o.scan_flank},
+                      {"stray_fraction", o.stray_fraction},
                       {"seed", o.seed}};
   if (o.shape == PanelShape::kPlate) {
     j["plate"] = {{"radius_x_mm", o.plate_radius_x_mm},
@@ -44,7 +46,10 @@ nlohmann::json options_json(const PanelOptions& o) {
                   {"clamp_span_mm", o.clamp_span_mm},
                   {"sag_mm", o.sag_mm},
                   {"bend_mm", o.bend_mm},
-                  {"twist_mm", o.twist_mm}};
+                  {"twist_mm", o.twist_mm},
+                  {"dent_depth_mm", o.dent_depth_mm},
+                  {"dent_width_mm", o.dent_width_mm},
+                  {"dent_at", o.dent_at}};
   } else {
     j["nosecone"] = {{"barrel_radius_mm", o.barrel_radius_mm},
                      {"window_height_mm", o.window_height_mm},

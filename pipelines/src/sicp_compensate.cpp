@@ -1,9 +1,11 @@
+#include <cmath>
 #include <memory>
 
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/pipelines/sicp.h"
 #include "conform/registration/downsample.h"
+#include "conform/registration/sicp_pairs.h"
 #include "conform/registration/surface_noise.h"
 
 namespace conform {
@@ -11,6 +13,25 @@ namespace {
 
 // The scan's noise for the path checks: plane fits over 20 neighbours (a few mm on a 1 mm voxel scan) at 400 points.
 const SurfaceNoiseOptions kScanNoise{20, 400};
+
+// The projection model judged like the others: each segment's RMS is that of its scan points against the model's
+// image of the nominal surface (the closest nominal point, mapped, along the mapped normal), not the rigid pose's.
+void projection_residuals(const ProjectionModel& model, const IcpReference& nominal, double max_distance_mm,
+                          SicpResult& registration) {
+  const Eigen::Isometry3d T_nominal_scan = model.T_scan_nominal.inverse();
+  for (std::size_t k = 0; k < registration.segments.size() && k < registration.segment_scan.size(); ++k) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const Eigen::Vector3d& q : registration.segment_scan[k]) {
+      const ReferencePoint c = closest_on_reference(nominal, T_nominal_scan * q, max_distance_mm);
+      if (!c.found) continue;
+      const double d = (q - model.map_point(c.point)).dot(model.map_normal(c.point, c.normal));
+      sum += d * d;
+      ++n;
+    }
+    registration.segments[k].rms_mm = n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+  }
+}
 
 }  // namespace
 
@@ -60,6 +81,7 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
     case SicpModel::kProjection: {
       r.projection =
           fit_projection_model(contour, *reference, thin, r.registration.T_scan_nominal_rigid, options.projection);
+      projection_residuals(r.projection, *reference, options.sicp.max_distance_mm, r.registration);
       for (std::size_t i = 0; i < nominal.points.size(); ++i) {
         r.trajectory.points.push_back(r.projection.map_point(nominal.points[i]));
         r.trajectory.normals.push_back(r.projection.map_normal(nominal.points[i], nominal.normals[i]));

@@ -8,6 +8,7 @@
 #include "conform/core/nearest_neighbors.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/sicp_pairs.h"
+#include "sicp_edge.h"
 #include "sicp_selection.h"
 
 namespace conform {
@@ -39,12 +40,19 @@ Cloud to_cloud(const std::vector<Eigen::Vector3d>& points) {
   return cloud;
 }
 
-// RMS of the pairs of T_nominal_scan * points with the nominal surface within max_distance; 0 without pairs.
+bool lexicographic(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+}
+
+// RMS of the pairs of T_nominal_scan * points with the nominal surface within max_distance; 0 without pairs. The
+// points hung below the scan's edge (sorted, lexicographic) are left out: the residuals judged are the scan's own.
 double pair_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T_nominal_scan,
-                const IcpReference& nominal, double max_distance_mm, double* sum_sq, std::size_t* count) {
+                const IcpReference& nominal, double max_distance_mm, const std::vector<Eigen::Vector3d>& hung,
+                double* sum_sq, std::size_t* count) {
   double sum = 0.0;
   std::size_t n = 0;
   for (const Eigen::Vector3d& p : points) {
+    if (std::binary_search(hung.begin(), hung.end(), p, lexicographic)) continue;
     const Eigen::Vector3d x = T_nominal_scan * p;
     const ReferencePoint r = closest_on_reference(nominal, x, max_distance_mm);
     if (!r.found) continue;
@@ -174,15 +182,16 @@ detail::SicpSelection register_segments(const Polyline& contour, const detail::C
 
 // Every segment's final transform (scan <- nominal) and the RMS of its pairs there; the overall RMS.
 void final_residuals(const detail::SicpSelection& selection, const IcpReference& reference, bool surface,
-                     const std::vector<Eigen::Isometry3d>& transforms, const SicpOptions& options, SicpResult& result) {
+                     const std::vector<Eigen::Isometry3d>& transforms, const std::vector<Eigen::Vector3d>& hung,
+                     const SicpOptions& options, SicpResult& result) {
   double sum_sq = 0.0;
   std::size_t count = 0;
   for (std::size_t k = 0; k < transforms.size(); ++k) {
     SicpSegmentFit& f = result.segments[k];
     if (surface) {
       f.T_scan_nominal = transforms[k].inverse();
-      f.rms_mm =
-          pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, &sum_sq, &count);
+      f.rms_mm = pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, hung, &sum_sq,
+                          &count);
     } else {
       f.T_scan_nominal = transforms[k];
       f.rms_mm = f.icp.rms_mm;
@@ -191,6 +200,29 @@ void final_residuals(const detail::SicpSelection& selection, const IcpReference&
     }
   }
   result.rms_mm = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+}
+
+// The rigid model judged like S-ICP: every segment at the one rigid pose, with the scan it selects there and the RMS
+// of its pairs, so that the checks (compensation/sicp_checks.h) see the rigid fit stretch by stretch.
+void rigid_segments(const detail::ContourLocator& locator, const std::vector<Eigen::Vector3d>& thin,
+                    const IcpReference& reference, const Eigen::Isometry3d& T, const std::vector<Eigen::Vector3d>& hung,
+                    const SicpOptions& options, SicpResult& result) {
+  const std::size_t candidates =
+      4 * result.segmentation.segments.size() * (options.points_per_segment + options.stability_points_per_segment);
+  const detail::SicpSelection selection = locator.select_scan(stride_downsample(thin, candidates), T, options);
+  result.segments.resize(result.segmentation.segments.size());
+  double sum_sq = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < result.segments.size(); ++k) {
+    SicpSegmentFit& f = result.segments[k];
+    f.T_scan_nominal = T.inverse();
+    f.neighbourhood_points = selection.neighbourhood_counts[k];
+    f.stability_points = selection.segment_points[k].size() - f.neighbourhood_points;
+    f.converged = result.coarse.converged;
+    f.usable = icp_usable(result.coarse);
+    f.rms_mm = pair_rms(selection.segment_points[k], T, reference, options.max_distance_mm, hung, &sum_sq, &count);
+  }
+  result.segment_scan = selection.segment_points;
 }
 
 }  // namespace
@@ -232,10 +264,19 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   }
   SicpResult result;
   result.segmentation = segment_contour(contour, options.segmentation);
-  const std::vector<Eigen::Vector3d> thin =
+  std::vector<Eigen::Vector3d> thin =
       options.scan_voxel_mm > 0.0 ? voxel_downsample(scan, options.scan_voxel_mm) : scan;
   result.scan_points_used = thin.size();
   const bool surface = nominal_surface != nullptr;
+  std::vector<Eigen::Vector3d> hung;
+  if (surface && options.scan_edge) {
+    detail::ScanEdge edge = detail::find_scan_edge(thin, contour, *nominal_surface,
+                                                   options.neighbourhood_mm + options.coarse_max_distance_mm);
+    result.scan_edge = std::move(edge.boundary);
+    hung = std::move(edge.hung);
+    thin.insert(thin.end(), hung.begin(), hung.end());
+    std::sort(hung.begin(), hung.end(), lexicographic);
+  }
   // Without a surface the contour moves onto the scan (the paper's direction); with one, the scan onto the surface.
   std::unique_ptr<IcpReference> scan_reference;
   if (!surface) scan_reference = std::make_unique<IcpReference>(to_cloud(thin));
@@ -253,7 +294,10 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
   result.termination =
       result.converged ? "converged" : std::string("coarse ICP: ") + to_string(result.coarse.termination);
   result.rms_mm = result.coarse.rms_mm;
-  if (options.rigid_only) return result;
+  if (options.rigid_only) {
+    if (surface) rigid_segments(locator, thin, reference, T, hung, options, result);
+    return result;
+  }
 
   report(options.progress, "sicp: segments", 0.0);
   std::vector<Eigen::Isometry3d> transforms;
@@ -279,7 +323,8 @@ SicpResult sicp_register(const Polyline& contour, const IcpReference* nominal_su
     result.joint.termination = surface ? "off" : "needs a nominal surface";
   }
 
-  final_residuals(selection, reference, surface, transforms, options, result);
+  final_residuals(selection, reference, surface, transforms, hung, options, result);
+  result.segment_scan = selection.segment_points;
   return result;
 }
 

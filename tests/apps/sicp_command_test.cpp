@@ -2,6 +2,7 @@
 // overall, "converged"; the output trajectory has the input's rows in order; the same bytes on a rerun; a mesh
 // contour (its boundary on the scan); exit code 2 and no output for bad input.
 
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -64,12 +65,17 @@ TEST_F(SicpCommandTest, JsonAndTrajectory) {
 }
 
 TEST_F(SicpCommandTest, RigidProjectionAndMeshContour) {
-  for (const char* model : {"projection"}) {  // rigid runs inside it
-    const auto r = sicp({"--surface", dir_.file("p.nominal.ply"), "--model", model, "--json"});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Every model gets S-ICP's checks, stretch by stretch: on the sagging plate one rigid transform (and the rigid one
+  // plus a height field) leaves every segment's residuals far above the noise, and the path is refused.
+  for (const char* model : {"rigid", "projection"}) {
+    const auto r = sicp({"--surface", dir_.file("p.nominal.ply"), "--model", model, "--json", "--out-trajectory",
+                         dir_.file("never.csv")});
+    ASSERT_EQ(r.exit_code, 1) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["model"], model);
-    EXPECT_EQ(j["segments"].size(), 0u);
+    EXPECT_GT(j["segments"].size(), 10u);
+    EXPECT_GT(j["checks"]["outlier_segments"].size(), 10u);
+    EXPECT_FALSE(std::filesystem::exists(dir_.file("never.csv")));
   }
   // The nominal mesh as the contour: its boundary loop on the scan (the flank's bottom edge) and its own surface.
   auto args = std::vector<std::string>{"sicp",

@@ -38,6 +38,11 @@ struct SicpCheckOptions {
   double min_confidence = 0.5;       // a row below this confidence makes the path untrusted, in [0, 1]
   double edge_radius_mm = 10.0;      // scan points within this of a compensated row measure the edge there, > 0
   double max_edge_gap_mm = 150.0;    // the longest unmeasured stretch of path bridged from its measured ends, >= 0
+  // Where the scan shows its own edge (a scan of the face without the flank: SicpResult::scan_edge), a row whose
+  // path lies farther than this across from it (the median over the edge points within edge_window_mm) is not
+  // trusted, > 0.
+  double max_edge_offset_mm = 0.5;
+  double edge_window_mm = 5.0;
   bool IsValid(std::string* error) const;
 };
 
@@ -50,6 +55,7 @@ struct SicpRowReport {
   double confidence = 0.0;      // [0, 1]: 1 measured (edge scan at the row) by segments with residuals at the noise
   std::size_t edge_points = 0;  // scan points within edge_radius_mm of the compensated row, up to 2 min_edge_points
   double gap_mm = 0.0;          // length of the unmeasured stretch the row lies in (0: measured)
+  double edge_offset_mm = 0.0;  // across, from the row to the scan's own edge (scan_edge) near it; 0 without
   double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
 };
 
@@ -64,6 +70,8 @@ struct SicpCheck {
   std::size_t far_rows = 0;                   // farther than max_offset_mm from the contour
   std::size_t unmeasured_rows = 0;            // fewer than min_edge_points scan points within edge_radius_mm
   std::size_t bridged_rows = 0;               // unmeasured, on a stretch bridged from its measured ends
+  std::size_t off_edge_rows = 0;              // farther than max_edge_offset_mm across from the scan's edge
+  double max_edge_offset_mm = 0.0;            // the largest |edge_offset_mm|
   double longest_gap_mm = 0.0;                // the longest unmeasured stretch of path
   double min_confidence = 0.0;
   bool trusted = false;  // the registration converged and every row has min_confidence

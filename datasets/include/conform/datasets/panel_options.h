@@ -69,6 +69,12 @@ struct PanelOptions {
   double missing_depth_mm = 15.0;  // how far from the edge a missing arc reaches
   int holes = 0;                   // more missing discs of the scan, at seeded places on the band
   double hole_radius_mm = 10.0;
+  // false: the scanner sees the band on the material side only, not the opening's flank (a one-sided scan: a laser
+  // line looking straight down, a handheld scan of the face); the nominal surface keeps its flank.
+  bool scan_flank = true;
+  // Stray points: this share of the scan drawn again anywhere over the band's bounding box, 1-20 mm off the surface
+  // along its normal (spikes, reflections, dust), in [0, 0.2].
+  double stray_fraction = 0.0;
 
   // --- the deformation ---
   double sag_mm = 4.0;      // plate: mid-span sag between the clamps
@@ -80,6 +86,12 @@ struct PanelOptions {
   // directions and phases): |D_z| <= field_mm, |D_x|, |D_y| <= field_mm / 2 (in the plane: it moves the edge across).
   double field_mm = 0.0;
   double field_wavelength_mm = 400.0;
+  // Plate: a local dent at the opening's edge, dent_depth_mm along -z (into the part) with a Gaussian profile of full
+  // width dent_width_mm (where it falls to 1/e^2 of its depth: 4 sigma), centred where the ray from the opening's
+  // centre at the angle dent_at x 360 deg (from +x, counter-clockwise) meets the edge; dent_at in [0, 1). 0: none.
+  double dent_depth_mm = 0.0;
+  double dent_width_mm = 20.0;
+  double dent_at = 0.3;
   Eigen::Vector3d rotation_deg = Eigen::Vector3d(0.3, -0.2, 0.4);    // G: rotation vector, degrees
   Eigen::Vector3d translation_mm = Eigen::Vector3d(1.5, -1.0, 2.0);  // G: translation
 

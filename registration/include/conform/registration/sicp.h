@@ -44,9 +44,13 @@ struct SicpOptions {
   int max_iterations = 30;  // per ICP (coarse and segments alike), in [1, 1000]; reaching it is no failure
   bool coarse_segment_pass = true;  // each segment's ICP first at coarse_max_distance_mm, then at max_distance_mm
   bool reselect = true;  // with a surface: each segment's scan selected again at its own pose, its ICP run again
+  // With a surface: the scan's boundary points facing the opening (within neighbourhood_mm of the contour), hung as a
+  // short flank below the face, join the scan (sicp_edge.h): a scan without the opening's flank then still measures
+  // the edge across. A scan with its flank has no such boundary points.
+  bool scan_edge = true;
   bool joint_refinement = true;
   SicpJointOptions joint;
-  bool rigid_only = false;  // stop after the coarse rigid ICP (the rigid and projection models need nothing more)
+  bool rigid_only = false;  // stop after the coarse rigid ICP and judge each segment at its pose (rigid, projection)
   ProgressFn progress;      // stages "sicp: coarse", "sicp: segments", "sicp: joint"
 
   bool IsValid(std::string* error) const;
@@ -69,6 +73,10 @@ struct SicpResult {
   std::vector<SicpSegmentFit> segments;
   SicpJointReport joint;
   std::size_t scan_points_used = 0;   // after thinning
+  std::vector<Eigen::Vector3d> scan_edge;  // where the scan's face ends at the opening (scan_edge; scan frame)
+  // Per segment, the scan points it was judged on (with a surface; also for rigid_only, at the rigid pose, whose
+  // segments then hold that pose and the RMS of its pairs there, so that every model is checked stretch by stretch).
+  std::vector<std::vector<Eigen::Vector3d>> segment_scan;
   double rms_mm = 0.0;                // over every segment's pairs
   bool converged = false;             // the coarse ICP is usable, and so was the joint refinement when it ran
   std::string termination;            // "converged", or why not
