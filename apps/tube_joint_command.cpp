@@ -65,6 +65,9 @@ class TubeJointCommand : public Command {
     c.add_option("--island-ratio", o_.solve.max_island_ratio,
                  "Intersection loops shorter than this fraction of the longest are dropped as noise islands; "
                  "longer ones fail");
+    c.add_option("--max-direction-error", o_.solve.max_direction_error_deg,
+                 "Largest 2-sigma error of the seam tangent the scans' noise may leave, deg; beyond: exit 1 "
+                 "[directions]");
     c.add_option("--weld-tolerance", o_.solve.weld_edge_fraction,
                  "Vertices closer than this fraction of a mesh's median edge length are welded into one (unwelded "
                  "scanner meshes); 0 = only coincident ones")
@@ -92,7 +95,8 @@ class TubeJointCommand : public Command {
     c.add_option("--weld-angle-deg", weld_deg_, "Weld torch angle off the leg surface, deg, [0, 90)");
     c.add_option("--cut-standoff", o_.solve.tools.cut_standoff_mm, "Cutting tool standoff s_c, mm");
     c.add_option("--weld-standoff", o_.solve.tools.weld_standoff_mm, "Welding torch standoff s_w, mm");
-    c.add_option("--k-normals", o_.solve.geometry.k_normals, "Vertices per normal fit (PCA plane + quadric), >= 3");
+    c.add_option("--k-normals", o_.solve.geometry.k_normals,
+                 "Vertices per normal fit (PCA plane + quadric), >= 3; 0 = sized to each mesh's noise and edges");
     c.add_option("--k-refine", o_.solve.geometry.k_refine,
                  "Vertices per local surface fit when refining path points onto both scans; 0 = off (the paper's "
                  "point)");

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
@@ -66,6 +67,8 @@ bool TubeJointSolveOptions::IsValid(std::string* error) const {
     why = "the largest facet error must be > 0 mm";
   } else if (!(max_island_ratio >= 0.0 && max_island_ratio < 1.0)) {
     why = "the island ratio must be in [0, 1)";
+  } else if (!(max_direction_error_deg > 0.0 && max_direction_error_deg <= 90.0)) {
+    why = "the largest direction error must be in (0, 90] deg";
   } else if (!(weld_edge_fraction >= 0.0 && weld_edge_fraction <= 0.25)) {
     why = "the weld tolerance must be in [0, 0.25] of the median edge";
   }
@@ -238,13 +241,34 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
   solution.frames = joint_geometry(solution.path.phi_rad, solution.path.points, stub, stub_axis, leg_S, leg_axis,
                                    options.geometry, &solution.refined_points);
   measure_written_path(solution.frames, &solution.path);
-  if (options.geometry.k_refine > 0 && solution.refined_points < solution.frames.size()) {
+  if (options.geometry.k_refine != 0 && solution.refined_points < solution.frames.size()) {
     solution.warnings.push_back("refined " + std::to_string(solution.refined_points) + " of " +
                                 std::to_string(solution.frames.size()) +
                                 " path points onto the local surface fits; the others keep the intersection "
                                 "polyline's point (the fits did not meet within the largest move)");
   }
+  // How well the scans determine the directions: 2 sigma of the tangent (Eq. 3 from the fitted normals; the cut and
+  // weld directions and the dihedral angle follow from it and the normals).
+  const PathFrame* worst = nullptr;
+  for (const PathFrame& f : solution.frames) {
+    if (worst == nullptr || f.tangent_sigma_deg > worst->tangent_sigma_deg) worst = &f;
+    solution.normal_sigma_deg_max =
+        std::max({solution.normal_sigma_deg_max, f.stub_normal_sigma_deg, f.leg_normal_sigma_deg});
+  }
+  if (worst != nullptr) solution.tangent_sigma_deg_max = worst->tangent_sigma_deg;
   solution.tools = tool_paths(solution.frames, options.tools);
+  if (worst != nullptr && 2.0 * worst->tangent_sigma_deg > options.max_direction_error_deg) {
+    std::ostringstream what;
+    what.precision(3);
+    what << "the seam tangent is not determined within " << options.max_direction_error_deg
+         << " deg at azimuth " << worst->phi_rad * 180.0 / kPi << " deg: the surfaces cross at "
+         << std::asin(std::min(1.0, worst->stub_normal.cross(worst->leg_normal).norm())) * 180.0 / kPi
+         << " deg there and the scans' noise leaves +-" << 2.0 * worst->tangent_sigma_deg
+         << " deg (2 sigma from the local surface fits' normals, " << worst->stub_normal_sigma_deg << " and "
+         << worst->leg_normal_sigma_deg << " deg): scan with less noise or raise --max-direction-error";
+    solution.total_seconds = seconds_since(start);
+    return failed(solution, curve_failure("directions", what.str(), worst->point));
+  }
   solution.safety = check_tool_safety(solution.frames, solution.tools, leg_axis, options.tools, options.safety);
   report(options.progress, "normals", 1.0);
   solution.total_seconds = seconds_since(start);

@@ -46,6 +46,8 @@ void add_robustness(const TubeJointJobResult& r, nlohmann::json* j) {
   (*j)["leg_welded_vertices"] = s.leg_welded_vertices;
   (*j)["stub_welded_vertices"] = s.stub_welded_vertices;
   (*j)["leg_weld_tolerance_mm"] = s.leg_weld_tolerance_mm;
+  (*j)["normal_sigma_deg_max"] = s.normal_sigma_deg_max;
+  (*j)["tangent_sigma_deg_max"] = s.tangent_sigma_deg_max;
   (*j)["stub_weld_tolerance_mm"] = s.stub_weld_tolerance_mm;
   (*j)["islands"] = s.islands;
   (*j)["longest_island_mm"] = s.longest_island_mm;

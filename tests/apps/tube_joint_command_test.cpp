@@ -278,7 +278,9 @@ TEST(TubeJointCommandMatrix, TheDocsExampleHasNoToolInsideMaterial) {
   EXPECT_EQ(unsafe.exit_code, 1) << unsafe.err;
   const nlohmann::json u = nlohmann::json::parse(unsafe.out);
   EXPECT_EQ(u["condition"], "safety");
-  EXPECT_EQ(u["safety"]["weld_tip_in_stub"]["count"], 264);  // the 1-deg azimuths where alpha_c(phi) < 40 deg
+  // The 1-deg azimuths where alpha_c(phi) < 40 deg (264); at the two where it is 40 deg within the normals' noise
+  // (phi = +-60 deg) the tip lies on the wall's face and goes either way.
+  EXPECT_NEAR(u["safety"]["weld_tip_in_stub"]["count"].get<double>(), 264.0, 2.0);
   EXPECT_NE(unsafe.err.find("inside the stub wall"), std::string::npos) << unsafe.err;
   EXPECT_FALSE(std::ifstream(dir.file("weld.csv")).good());
   args.back() = "10";

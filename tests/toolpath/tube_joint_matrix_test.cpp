@@ -36,6 +36,7 @@ struct Corner {
   double peaking_mm;
   int must_pass;                           // of the five seeds
   std::set<std::string> allowed_failures;  // diagnoses allowed when a seed does not pass
+  double max_direction_error_deg = 2.0;    // the solve's [directions] limit (this matrix checks positions)
 };
 
 TubeJointOptions corner_options(const Corner& k, unsigned seed) {
@@ -66,7 +67,9 @@ void run_corner(const Corner& k) {
   for (unsigned seed = 0; seed < 5; ++seed) {
     const TubeJointOptions options = corner_options(k, seed);
     const TubeJointScans scans = generate_tube_joint(options);
-    const TubeJointSolution s = solve_tube_joint(scans.leg_L, scans.stub_S, options.T_L_S.inverse(), {});
+    TubeJointSolveOptions solve_options;
+    solve_options.max_direction_error_deg = k.max_direction_error_deg;
+    const TubeJointSolution s = solve_tube_joint(scans.leg_L, scans.stub_S, options.T_L_S.inverse(), solve_options);
     if (!s.ok) {
       std::printf("%s seed %u: exit 1, %s\n", k.name, seed, s.termination.c_str());
       EXPECT_TRUE(k.allowed_failures.count(s.check.condition) > 0)
@@ -108,7 +111,9 @@ TEST(TubeJointMatrix, ShallowPitchHeavyDeformation) {
   run_corner({"pitch 20, offset 0, 5 mm, 0.5 mm noise, 2 %, 5 mm", 20.0, 0.0, 600.0, 250.0, 5.0, 0.5, 2.0, 5.0, 5, {}});
 }
 
-// The stub's wall nearly tangent to the leg (offset 0.95 (R - r)) on a coarse 10 mm mesh with 0.5 mm noise.
+// The stub's wall nearly tangent to the leg (offset 0.95 (R - r)) on a coarse 10 mm mesh with 0.5 mm noise. The seam
+// tangent there is known to +-2.1-2.3 deg only (2 sigma; [directions] refuses it at the default 2 deg): this corner
+// checks the path's position, with the direction limit at 5 deg.
 TEST(TubeJointMatrix, NearTangentCoarseNoisy) {
   run_corner({"pitch 90, offset 0.95, 10 mm, 0.5 mm noise, 2 %, 5 mm",
               90.0,
@@ -120,7 +125,8 @@ TEST(TubeJointMatrix, NearTangentCoarseNoisy) {
               2.0,
               5.0,
               4,
-              {"azimuth", "one-curve", "jordan"}});
+              {"azimuth", "one-curve", "jordan"},
+              5.0});
 }
 
 // Noise-free, undeformed, negative offset: the facet sagitta alone.

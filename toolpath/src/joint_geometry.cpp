@@ -1,15 +1,18 @@
 #include "conform/toolpath/joint_geometry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/toolpath/local_quadric.h"
+#include "conform/toolpath/scan_quality.h"
 
 namespace conform {
 namespace {
@@ -29,14 +32,24 @@ std::vector<Eigen::Vector3d> neighbours(const KdTree& tree, const Mesh& mesh, co
   return out;
 }
 
+// The fit's unit normal at p, away from the tube's axis.
+Eigen::Vector3d oriented(const LocalQuadric& patch, const Eigen::Vector3d& p, const TubeAxis& axis) {
+  Eigen::Vector3d normal = patch.gradient(p).normalized();
+  if (normal.dot(radial(p, axis)) < 0.0) normal = -normal;
+  return normal;
+}
+
 }  // namespace
 
 bool JointGeometryOptions::IsValid(std::string* error) const {
   std::string why;
-  if (k_normals < 3)
-    why = "k-normals " + std::to_string(k_normals) + " must be >= 3";
-  else if (k_refine != 0 && k_refine < 6)
-    why = "k-refine " + std::to_string(k_refine) + " must be 0 (off) or >= 6";
+  if (k_normals != 0 && k_normals < 3)
+    why = "k-normals " + std::to_string(k_normals) + " must be 0 (sized to the noise) or >= 3";
+  else if (k_refine > 0 && k_refine < 6)
+    why = "k-refine " + std::to_string(k_refine) + " must be < 0 (the normals'), 0 (off) or >= 6";
+  else if (!(target_normal_deg > 0.0 && target_normal_deg <= 10.0) ||
+           !(target_tangent_deg > 0.0 && target_tangent_deg <= 10.0))
+    why = "the target normal and tangent errors must be in (0, 10] deg";
   else if (!(max_refine_mm > 0.0))
     why = "the largest refinement move must be > 0 mm";
   if (why.empty()) return true;
@@ -46,10 +59,7 @@ bool JointGeometryOptions::IsValid(std::string* error) const {
 
 Eigen::Vector3d pca_normal(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& p, const TubeAxis& axis,
                            NormalFit fit) {
-  const LocalQuadric patch = fit_local_quadric(points, p, fit == NormalFit::kQuadric);
-  Eigen::Vector3d normal = patch.gradient(p).normalized();
-  if (normal.dot(radial(p, axis)) < 0.0) normal = -normal;
-  return normal;
+  return oriented(fit_local_quadric(points, p, fit == NormalFit::kQuadric), p, axis);
 }
 
 bool refine_seam_point(const LocalQuadric& stub, const LocalQuadric& leg, double max_move_mm, Eigen::Vector3d* p) {
@@ -92,25 +102,49 @@ PathFrame path_frame(double phi_rad, const Eigen::Vector3d& p, const Eigen::Vect
   return frame;
 }
 
+int sized_normal_count(double noise_mm, double edge_mm, const JointGeometryOptions& options) {
+  if (options.k_normals > 0) return options.k_normals;
+  const double theta = options.target_normal_deg * kPi / 180.0;
+  const double n = edge_mm > 0.0 ? 3.8 * noise_mm / (edge_mm * theta) : 0.0;
+  return static_cast<int>(std::clamp(std::ceil(n), double(JointGeometryOptions::kMinNormals),
+                                     double(JointGeometryOptions::kMaxNormals)));
+}
+
 std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
                                       const Mesh& stub_S, const TubeAxis& stub_axis, const Mesh& leg_S,
                                       const TubeAxis& leg_axis, const JointGeometryOptions& options,
                                       std::size_t* refined) {
   std::string why;
   if (!options.IsValid(&why)) throw Error("joint geometry: " + why);
-  const auto k = static_cast<std::size_t>(options.k_normals);
-  if (stub_S.vertices.size() < k || leg_S.vertices.size() < k) {
-    throw Error("joint geometry: a mesh has fewer vertices than k-normals (" + std::to_string(k) + ")");
+  // The neighbourhood of each mesh: given, or sized to its noise and edges near the path.
+  int k_stub = options.k_normals, k_leg = options.k_normals;
+  if (options.k_normals == 0) {
+    const int probe = static_cast<int>(std::min<std::size_t>(40, std::min(stub_S.vertices.size(), leg_S.vertices.size())));
+    if (probe < 6) throw Error("joint geometry: a mesh has fewer than 6 vertices");
+    const ScanQuality qs = estimate_scan_quality(stub_S, points, probe, 96);
+    const ScanQuality ql = estimate_scan_quality(leg_S, points, probe, 96);
+    k_stub = sized_normal_count(qs.noise_mm, qs.edge_mm, options);
+    k_leg = sized_normal_count(ql.noise_mm, ql.edge_mm, options);
   }
+  k_stub = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k_stub), stub_S.vertices.size()));
+  k_leg = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k_leg), leg_S.vertices.size()));
+  if (k_stub < 3 || k_leg < 3 || (options.k_normals > 0 && (stub_S.vertices.size() < static_cast<std::size_t>(
+                                                                 options.k_normals) ||
+                                                             leg_S.vertices.size() < static_cast<std::size_t>(
+                                                                 options.k_normals)))) {
+    throw Error("joint geometry: a mesh has fewer vertices than k-normals (" + std::to_string(options.k_normals) + ")");
+  }
+  const int refine_stub = options.k_refine < 0 ? std::max(k_stub, 6) : options.k_refine;
+  const int refine_leg = options.k_refine < 0 ? std::max(k_leg, 6) : options.k_refine;
   const KdTree stub_tree(stub_S.vertices);
   const KdTree leg_tree(leg_S.vertices);
   std::vector<PathFrame> frames(points.size());
+  const bool quadric = options.fit == NormalFit::kQuadric;
   for (std::size_t i = 0; i < points.size(); ++i) {
     Eigen::Vector3d p = points[i];
-    if (options.k_refine > 0) {
-      const bool quadric = options.fit == NormalFit::kQuadric;
-      const LocalQuadric stub = fit_local_quadric(neighbours(stub_tree, stub_S, p, options.k_refine), p, quadric);
-      const LocalQuadric leg = fit_local_quadric(neighbours(leg_tree, leg_S, p, options.k_refine), p, quadric);
+    if (options.k_refine != 0) {
+      const LocalQuadric stub = fit_local_quadric(neighbours(stub_tree, stub_S, p, refine_stub), p, quadric);
+      const LocalQuadric leg = fit_local_quadric(neighbours(leg_tree, leg_S, p, refine_leg), p, quadric);
       // The fits hold within their patches: a move up to half the smaller patch's radius is trusted.
       const double limit = std::max(options.max_refine_mm, 0.5 * std::min(stub.scale, leg.scale));
       if (!refine_seam_point(stub, leg, limit, &p)) {
@@ -119,10 +153,30 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
         ++*refined;
       }
     }
-    const Eigen::Vector3d n_s =
-        pca_normal(neighbours(stub_tree, stub_S, p, options.k_normals), p, stub_axis, options.fit);
-    const Eigen::Vector3d n_l = pca_normal(neighbours(leg_tree, leg_S, p, options.k_normals), p, leg_axis, options.fit);
-    frames[i] = path_frame(phi_rad[i], p, n_s, n_l);
+    // Where the surfaces cross at a grazing angle Eq. (3) amplifies the normals' noise by 1 / sin(beta): with sized
+    // neighbourhoods (k_normals = 0) the fits there grow (the noise error falls as 1 / N) until the tangent's is
+    // target_tangent_deg, or the neighbourhood kMaxNormals.
+    int ks = k_stub, kl = k_leg;
+    for (int round = 0; round < 2; ++round) {
+      const LocalQuadric fs = fit_local_quadric(neighbours(stub_tree, stub_S, p, ks), p, quadric);
+      const LocalQuadric fl = fit_local_quadric(neighbours(leg_tree, leg_S, p, kl), p, quadric);
+      frames[i] = path_frame(phi_rad[i], p, oriented(fs, p, stub_axis), oriented(fl, p, leg_axis));
+      const double sin_beta = std::max(frames[i].stub_normal.cross(frames[i].leg_normal).norm(), 1e-6);
+      frames[i].stub_normal_sigma_deg = fs.normal_sigma_rad * 180.0 / kPi;
+      frames[i].leg_normal_sigma_deg = fl.normal_sigma_rad * 180.0 / kPi;
+      // Only the normals' tilt across the seam turns t by 1 / sin(beta): one of the two components of each sigma.
+      frames[i].tangent_sigma_deg =
+          std::hypot(frames[i].stub_normal_sigma_deg, frames[i].leg_normal_sigma_deg) / (std::sqrt(2.0) * sin_beta);
+      const double ratio = frames[i].tangent_sigma_deg / options.target_tangent_deg;
+      if (options.k_normals != 0 || ratio <= 1.0) break;
+      auto grown = [&](int k, std::size_t size) {
+        return static_cast<int>(std::min<double>({std::ceil(k * ratio), double(JointGeometryOptions::kMaxNormals),
+                                                  static_cast<double>(size)}));
+      };
+      const int ks2 = grown(ks, stub_S.vertices.size()), kl2 = grown(kl, leg_S.vertices.size());
+      if (ks2 == ks && kl2 == kl) break;
+      ks = ks2, kl = kl2;
+    }
   }
   return frames;
 }

@@ -1,6 +1,7 @@
 #include "conform/toolpath/local_quadric.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -63,6 +64,13 @@ LocalQuadric fit_local_quadric(const std::vector<Eigen::Vector3d>& points, const
   const Eigen::VectorXd coefficients = qr.solve(h);
   for (int i = 0; i < 6; ++i) patch.c[i] = coefficients(i);
   patch.quadric = true;
+  if (points.size() > 6) {
+    // sigma^2 (A^T A)^-1 for the slopes: how far the noise can tilt the normal at the origin.
+    const double variance = (A * coefficients - h).squaredNorm() / static_cast<double>(points.size() - 6);
+    const Eigen::Matrix<double, 6, 6> inverse = (A.transpose() * A).inverse();
+    const double slopes = variance * (inverse(3, 3) + inverse(4, 4));
+    if (std::isfinite(slopes) && slopes >= 0.0) patch.normal_sigma_rad = std::sqrt(slopes);
+  }
   return patch;
 }
 

@@ -44,6 +44,9 @@ struct TubeJointSolveOptions {
   // Vertices closer than this fraction of a mesh's median edge length are one vertex (scanner meshes come unwelded:
   // a seam's vertices duplicated microns apart, which would be an open end (1a)). 0: only coincident ones. [0, 0.25].
   double weld_edge_fraction = 0.01;
+  // 2 sigma of the seam tangent the scans' noise leaves (local surface fits, amplified by 1 / sin of the crossing
+  // angle) above this anywhere on the path: the directions are not determined there (exit 1, [directions]).
+  double max_direction_error_deg = 2.0;
   PathSamplingOptions sampling;          // azimuth or arc-length step; smoothing (applied before the azimuth test)
   JointGeometryOptions geometry;         // k nearest vertices per PCA normal
   ToolPathOptions tools;                 // groove angles, weld angle, standoffs
@@ -81,6 +84,8 @@ struct TubeJointSolution {
   ScanQuality stub_quality;
   double min_crossing_deg = 90.0;       // the smallest angle between the surfaces at the quality samples
   double facet_error_mm = 0.0;          // the bound above, for these scans
+  double normal_sigma_deg_max = 0.0;    // 1 sigma of the fitted normals (either mesh), largest over the path
+  double tangent_sigma_deg_max = 0.0;   // 1 sigma of the seam tangent, largest over the path
   std::size_t refined_points = 0;       // path points moved onto the local fits (k_refine > 0)
   ToolSafetyResult safety;
   double intersection_seconds = 0.0;

@@ -28,12 +28,21 @@ struct TubeAxis {
 enum class NormalFit { kPlane, kQuadric };
 
 struct JointGeometryOptions {
-  int k_normals = 40;  // vertices per normal fit, >= 3 (>= 6 for kQuadric, else it falls back to the plane)
+  // Vertices per normal fit, >= 3 (>= 6 for kQuadric, else it falls back to the plane). 0 (default): sized to each
+  // mesh's noise sigma and median edge e near the path (scan_quality.h), so that the normal's noise error is about
+  // target_normal_deg: N = 3.8 sigma / (e theta) vertices (a disk of N vertices of 0.87 e^2 each, radius r, tilts by
+  // 2 sigma / (r sqrt(N))), within [kMinNormals, kMaxNormals].
+  int k_normals = 0;
+  double target_normal_deg = 0.1;
+  double target_tangent_deg = 0.35;  // sized fits grow where the tangent's noise error (1 / sin beta) exceeds this
+  static constexpr int kMinNormals = 40;
+  static constexpr int kMaxNormals = 800;
   NormalFit fit = NormalFit::kQuadric;
   // Beyond the paper: each path point is moved onto the intersection of the two local surface fits (k_refine
   // nearest vertices of each mesh), within the half-plane of its azimuth (so phi is kept), by Newton's method. This
-  // averages the scanner noise of k vertices instead of taking one facet's. 0: off (the paper's point).
-  int k_refine = 40;
+  // averages the scanner noise of k vertices instead of taking one facet's. 0: off (the paper's point); < 0
+  // (default): the normals' k of each mesh.
+  int k_refine = -1;
   // A refinement that would move a point farther than this, or than half the radius of the smaller local patch
   // (k_refine vertices; the fits hold within it), is not applied.
   double max_refine_mm = 3.0;
@@ -49,7 +58,14 @@ struct PathFrame {
   Eigen::Vector3d stub_normal = Eigen::Vector3d::UnitX();
   Eigen::Vector3d leg_normal = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d leg_out = Eigen::Vector3d::UnitY();  // t_l_out, Eq. (6)
+  // 1-sigma errors the scans' noise leaves (LocalQuadric::normal_sigma_rad): each normal's, and the tangent's,
+  // sqrt((sigma_s^2 + sigma_l^2) / 2) / sin(beta) for the angle beta between the normals (Eq. 3 amplifies the tilt
+  // across the seam, one of each normal's two components, by 1 / sin beta).
+  double stub_normal_sigma_deg = 0.0, leg_normal_sigma_deg = 0.0, tangent_sigma_deg = 0.0;
 };
+
+// Vertices per normal fit for a mesh of this noise and median edge (JointGeometryOptions::k_normals = 0).
+int sized_normal_count(double noise_mm, double edge_mm, const JointGeometryOptions& options);
 
 // The outward unit normal at p from the PCA of the given points (their smallest principal direction), oriented away
 // from the axis. Throws conform::Error with fewer than 3 points.

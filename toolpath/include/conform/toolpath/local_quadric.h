@@ -18,6 +18,8 @@ struct LocalQuadric {
   Eigen::Vector3d n = Eigen::Vector3d::UnitZ();  // smallest: the plane's normal (sign arbitrary)
   double scale = 1.0;                            // coordinates are divided by it for conditioning, mm
   double c[6] = {0, 0, 0, 0, 0, 0};              // a, b, c, d, e, f in scaled coordinates
+  double normal_sigma_rad = 0.0;                 // 1-sigma error of the normal at the origin from the residuals
+                                                 // (least-squares covariance of the slopes d, e; quadric only)
 
   // Signed height of p above the patch along n, mm (0 on the surface).
   double height(const Eigen::Vector3d& p) const;
