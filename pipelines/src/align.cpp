@@ -78,13 +78,11 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
 }
 
 // Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
-void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
-                    const Mesh& reference_mesh, const AlignOptions& options, double max_distance_mm,
-                    AlignResult& result) {
+void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference, const Mesh& reference_mesh,
+                    const AlignOptions& options, double max_distance_mm, AlignResult& result) {
   switch (options.init) {
     case AlignInit::kNone:
-      result.start = "identity";
-      return;
+      break;
     case AlignInit::kPairs:
       result.pairs = align_point_pairs(detail::read_point_pairs(options.pairs_path, options.mm_per_unit));
       result.T_start = result.pairs.T_ref_scan;
@@ -94,8 +92,16 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
     case AlignInit::kFpfh:
       break;
   }
+  const bool given = options.init == AlignInit::kNone;
   CoarseOptions coarse;
-  coarse.method = options.init == AlignInit::kPca ? CoarseMethod::kPca : CoarseMethod::kFpfh;
+  coarse.method = given                             ? CoarseMethod::kNone
+                  : options.init == AlignInit::kPca ? CoarseMethod::kPca
+                                                    : CoarseMethod::kFpfh;
+  // A start the user gave is ranked against itself turned by the reference's candidate symmetries: a near-symmetric
+  // part placed one index off (a flange one bolt hole round) is found at the right one or called ambiguous. Not
+  // refined: unless a turned start wins, fine ICP starts from the user's own.
+  coarse.probe_given_start = given;
+  if (given) coarse.refine_iterations = 0;
   coarse.fpfh.seed = options.seed;
   // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
   // The probes find the basin: every pair pulls (a start a few mm off slides home only if the part of the scan that
@@ -110,18 +116,27 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   std::optional<IcpReference> surface;
   if (spacing > 0.0) surface.emplace(detail::coarse_reference(reference_mesh, spacing));
   result.coarse = coarse_align(scan, surface ? *surface : reference, coarse);
-  result.T_start = result.coarse.T_ref_scan;
-  result.start = result.coarse.winner;
   const MultiStartResult& ranking = result.coarse.ranking;
+  // The user's start is kept unless a turned one fits better beyond doubt: when the ranking is ambiguous the data
+  // cannot tell the turns apart (a symmetric part), and where the user placed the scan decides (the verdict says so).
+  const bool kept = given && (ranking.ambiguous || ranking.best < 0 ||
+                              ranking.starts[static_cast<std::size_t>(ranking.best)].label == "identity");
+  result.T_start = kept ? Eigen::Isometry3d::Identity() : result.coarse.T_ref_scan;
+  result.start = kept ? std::string("identity") : result.coarse.winner;
+  if (given && !kept) {
+    result.warnings.push_back("the start given fits worse than '" + result.coarse.winner +
+                              "' (the reference is near-symmetric): fine ICP started there");
+  }
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
     char shares[160];
-    std::snprintf(shares, sizeof shares,
-                  "inlier share %.3f against %.3f within %.3g mm; truncated RMS %.3g against %.3g mm", other.inlier_share, best.inlier_share, result.coarse.inlier_distance_mm, other.score_mm,
-                  best.score_mm);
-    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label + "' fits almost as well as '" +
-                              best.label + "' (" + shares + ") at another pose; the part may be symmetric");
+    std::snprintf(
+        shares, sizeof shares, "inlier share %.3f against %.3f within %.3g mm; truncated RMS %.3g against %.3g mm",
+        other.inlier_share, best.inlier_share, result.coarse.inlier_distance_mm, other.score_mm, best.score_mm);
+    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label +
+                              "' fits almost as well as '" + best.label + "' (" + shares +
+                              ") at another pose; the part may be symmetric");
   }
 }
 
@@ -236,15 +251,13 @@ AlignResult run_align(const AlignOptions& options) {
                                                     options.cad, &result.cad_inputs);
   report(options.progress, "read scan", 1.0);
   report(options.progress, "read reference", 0.0);
-  Mesh reference_mesh =
-      detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit, result.warnings,
-                                 options.cad, &result.cad_inputs);
+  Mesh reference_mesh = detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit,
+                                                   result.warnings, options.cad, &result.cad_inputs);
   report(options.progress, "read reference", 1.0);
   if (options.max_size_ratio > 0.0) {
     detail::check_sizes(scan_mesh, reference_mesh, options.scan_path, options.reference_path, options.max_size_ratio);
   }
-  result.method =
-      options.method.value_or(default_align_method(reference_mesh.has_faces()));
+  result.method = options.method.value_or(default_align_method(reference_mesh.has_faces()));
   if (result.method == IcpMethod::kPointToSurface && !reference_mesh.has_faces()) {
     throw Error(options.reference_path + ": point-to-surface needs a reference mesh with faces; this file holds " +
                 "points only (use point-to-plane)");
@@ -270,8 +283,9 @@ AlignResult run_align(const AlignOptions& options) {
   report(options.progress, "normals", 1.0);
   // Fine point-to-surface ICP needs the triangle index: built beside the coarse stage, which is mostly serial.
   if (result.method == IcpMethod::kPointToSurface && options.init != AlignInit::kNone) reference.prepare_surface();
-  result.max_distance_mm = options.max_distance_mm > 0.0 ? options.max_distance_mm
-                                                         : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
+  result.max_distance_mm = options.max_distance_mm > 0.0
+                               ? options.max_distance_mm
+                               : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, reference_mesh, options, result.max_distance_mm, result);
   IcpOptions fine = fine_options(options, result.method, result.max_distance_mm, !reference_mesh.has_faces());
   // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's

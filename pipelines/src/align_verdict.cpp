@@ -130,7 +130,17 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   // reference with --overlap 0: align.cpp, fine_options), or all of it (a mesh: the nominal part).
   const bool estimated = options.overlap == 0.0 && !reference.has_surface();
   const double expected_overlap = options.overlap > 0.0 ? options.overlap : estimated ? icp.inlier_fraction : 1.0;
-  if (ranking.ambiguous) {
+  const bool coarse_start = options.init == AlignInit::kPca || options.init == AlignInit::kFpfh;
+  if (ranking.ambiguous && !coarse_start) {
+    // From a start the user gave (ranked against its symmetric turns, align.cpp): the data cannot tell the turns
+    // apart, so the user's placement decided.
+    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
+    check.push_back("'" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
+                    how_far(best, other, centre) +
+                    " (the part is near-symmetric): the scan does not tell them apart, so the start given decided; "
+                    "check it");
+  } else if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
     no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
@@ -177,7 +187,6 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   } else if (v.overlap < kLowOverlapShare * (options.overlap > 0.0 ? options.overlap : 1.0)) {
     check.push_back(format("only %.0f%% of the scan lies on the reference", 100.0 * v.overlap));
   }
-  const bool coarse_start = options.init == AlignInit::kPca || options.init == AlignInit::kFpfh;
   if (icp.degeneracy.degenerate() && coarse_start && !ranking.free_motions.empty()) {
     // The coarse candidates showed the fit unchanged along these motions (multi_start.h): the part is symmetric
     // along them, every value is as right as another; the constrained motions agree (else: ambiguous, above).

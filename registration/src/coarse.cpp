@@ -33,7 +33,7 @@ bool CoarseOptions::IsValid(std::string* error) const {
     why = "refine_iterations must be >= 0 and refine_points >= 10";
   } else if (method == CoarseMethod::kFpfh && !fpfh.IsValid(&why)) {
     why = "fpfh: " + why;
-  } else if (method != CoarseMethod::kNone && !multi_start.IsValid(&why)) {
+  } else if ((method != CoarseMethod::kNone || probe_given_start) && !multi_start.IsValid(&why)) {
     why = "multi_start: " + why;
   }
   if (why.empty()) return true;
@@ -46,11 +46,12 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
   std::string why;
   if (!options.IsValid(&why)) throw Error("coarse alignment options: " + why);
   CoarseResult result;
+  std::vector<CoarseStart> starts;
   if (options.method == CoarseMethod::kNone) {
     result.winner = "identity";
-    return result;
+    if (!options.probe_given_start) return result;
+    starts.push_back({"identity", Eigen::Isometry3d::Identity()});
   }
-  std::vector<CoarseStart> starts;
   if (options.method == CoarseMethod::kFpfh) {
     report(options.progress, "coarse: fpfh", 0.0);
     result.fpfh_used = true;

@@ -13,6 +13,10 @@ namespace conform {
 
 namespace {
 
+// The step of the turns probed about a near-axisymmetric reference's axis (symmetry_starts): 15 deg reaches every
+// index of a part with up to 12 equal features round its axis within half their spacing.
+constexpr double kAxialTurnDeg = 15.0;
+
 // sqrt(mean(min(d, cap)^2)) over the points, d the distance to the nearest reference point.
 double truncated_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
                      const IcpReference& reference, double cap) {
@@ -76,7 +80,9 @@ double size_of(const std::vector<Eigen::Vector3d>& points) {
 }
 
 // The best pose followed by a turn of the reference about its principal axes through its centroid: half turns about
-// each axis, and quarter turns about an axis whose two companions spread alike (within `similarity`).
+// each axis, and about an axis whose two companions spread alike (within `similarity`: a near-axisymmetric part, a
+// flange, a hub) every kAxialTurnDeg: an n-fold part (n bolt holes) has its other indices n-fold apart, and a turn
+// within half of that of each reaches it (n <= 12).
 std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
                                          double similarity) {
   std::vector<CoarseStart> out;
@@ -95,8 +101,9 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
     add(k, 180.0);
     const double u = axes.variances((k + 1) % 3), v = axes.variances((k + 2) % 3);
     if (std::abs(u - v) <= similarity * std::max(u, v)) {
-      add(k, 90.0);
-      add(k, -90.0);
+      for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
+        if (std::abs(degrees - 180.0) > 1.0) add(k, degrees > 180.0 ? degrees - 360.0 : degrees);
+      }
     }
   }
   return out;
@@ -315,7 +322,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
       static_cast<double>(subset.size());
   const double size_mm = size_of(subset);
-  const double far_mm = !by_share                  ? 0.01 * size_mm
+  const double far_mm = !by_share                   ? 0.01 * size_mm
                         : options.distinct_mm > 0.0 ? options.distinct_mm
                                                     : std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
   const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;

@@ -49,6 +49,18 @@ TopoDS_Shape box_with_boss_and_hole() {
   return BRepAlgoAPI_Cut(fused, drill).Shape();
 }
 
+TopoDS_Shape flange() {
+  TopoDS_Shape shape = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp::DZ()), 100.0, 20.0).Shape();
+  shape = BRepAlgoAPI_Cut(shape, cylinder(40.0, -5.0, 25.0)).Shape();
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * M_PI / 3.0;
+    const gp_Pnt centre(70.0 * std::cos(a), 70.0 * std::sin(a), -5.0);
+    shape = BRepAlgoAPI_Cut(shape, BRepPrimAPI_MakeCylinder(gp_Ax2(centre, gp::DZ()), 8.0, 30.0).Shape()).Shape();
+  }
+  const TopoDS_Shape keyway = BRepPrimAPI_MakeBox(gp_Pnt(-6.0, 30.0, -5.0), 12.0, 17.0, 30.0).Shape();
+  return BRepAlgoAPI_Cut(shape, keyway).Shape();
+}
+
 namespace {
 
 // `shape` with a symmetric chamfer of `size_mm` on its edges that run at height z_mm along y = y_mm (both ends).

@@ -22,6 +22,10 @@ TopoDS_Shape box_with_boss_and_hole();
 // y = 40, it follows the tangent fillets all the way round: the top's corners are arcs of R6) and a 16 x 10 mm pocket
 // 5 mm deep in the top at (8..24, 8..18): flat faces next to fillets and steps, as machined.
 TopoDS_Shape filleted_block();
+// A flange (z up, its axis the z axis): a disc of radius 100 mm, 20 mm thick, a 40 mm bore, six 8 mm bolt holes on a
+// 70 mm circle at 0, 60, ..., 300 deg and one keyway, 12 mm wide and 7 mm deep, in the bore at 90 deg: six-fold
+// symmetric but for the keyway.
+TopoDS_Shape flange();
 // A machined plate 120 x 80 x 10 mm: three ribs 6 x 70 x 8 mm on top at x = 10, 40, 70, a boss of R9 and 12 mm at
 // (100, 40), a pocket 22 x 14 mm, 6 mm deep, at (90..112, 8..22), and a 3 mm chamfer on the top edge along y = 80.
 TopoDS_Shape ribbed_plate();

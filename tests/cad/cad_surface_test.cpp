@@ -198,5 +198,42 @@ TEST(CadSurfaceMatrix, DefaultFineFitOnAMachinedPlateLandsOnThePose) {
   }
 }
 
+// A flange scanned from the top (0.02 mm noise; no point of its underside) and placed one bolt hole round from its
+// pose (58 deg about its axis) or nearly at it (2 deg), aligned with `--init none` against its STEP: the start is
+// ranked against itself turned about the flange's axis (the reference's near-symmetry), and the keyway, which fits
+// only at the right index, decides. Before, ICP from the 58 deg start converged on the index 60 deg away and said
+// "trust the pose". Either the pose is right or the job says no; never the wrong index with exit 0.
+TEST(CadSurface, AFlangeStartedOneBoltHoleOffFindsItsIndex) {
+  test::TempDir dir;
+  const TopoDS_Shape flange = test::flange();
+  test::write_cad(flange, dir.file("flange.step"), CadFormat::kStep, "MM");
+  const test::SurfaceSample sample = test::sample_surface(flange, 40000, 0.02, 5);
+  for (double start_deg : {58.0, 2.0}) {
+    Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+    T_ref_scan.rotate(Eigen::AngleAxisd(start_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+    Mesh scan;
+    for (std::size_t i = 0; i < sample.points.size(); ++i) {
+      if (sample.normals[i].z() > -0.5) scan.vertices.push_back(T_ref_scan.inverse() * sample.points[i]);
+    }
+    WriteOptions write;
+    write.double_precision = true;
+    write_mesh(dir.file("scan.ply"), scan, write);
+    const test::RunResult r = test::run(CONFORM_EXE, {"align", "--scan", dir.file("scan.ply"), "--reference",
+                                                      dir.file("flange.step"), "--init", "none", "--json"});
+    ASSERT_NE(r.exit_code, 2) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const Eigen::Isometry3d error = T_ref_scan.inverse() * transform_of(j);
+    const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
+    const Eigen::Vector3d rim(100, 0, 20);
+    const double rim_mm = (error * rim - rim).norm();
+    std::printf("flange started %.0f deg off: %.4f deg, %.4f mm at the rim, exit %d, start '%s': %s\n", start_deg,
+                rotation_deg, rim_mm, r.exit_code, j["start"].get<std::string>().c_str(),
+                j["verdict"]["summary"].get<std::string>().c_str());
+    EXPECT_EQ(r.exit_code, 0) << start_deg;  // a right start and one an index off: both found and accepted
+    EXPECT_LT(rotation_deg, 0.01) << start_deg;
+    EXPECT_LT(rim_mm, 0.02) << start_deg;
+  }
+}
+
 }  // namespace
 }  // namespace conform

@@ -15,7 +15,7 @@
 namespace conform {
 
 enum class CoarseMethod {
-  kNone,  // start from the given transform (the identity: the scan is already roughly in place)
+  kNone,  // start from the given transform (the identity: the scan is already roughly in place); see probe_given_start
   kPca,   // principal axes, every sign combination tried
   kFpfh,  // FPFH + RANSAC, joined by the principal-axes starts when it finds no hypothesis
 };
@@ -36,17 +36,21 @@ struct CoarseOptions {
   // refine_points scan points, holding only what the data cannot fix at all); 0: the probe's pose as it is.
   int refine_iterations = 30;
   std::size_t refine_points = 20000;
-  ProgressFn progress;            // stages "coarse: fpfh", "coarse: starts", "coarse: refine"
+  // kNone: the given start (the identity) is still ranked against itself turned by the reference's candidate
+  // symmetries (multi_start.h): a near-symmetric part placed one index off (a flange one bolt hole round) is found
+  // there, or the result is ambiguous. false: kNone returns the identity unranked.
+  bool probe_given_start = false;
+  ProgressFn progress;  // stages "coarse: fpfh", "coarse: starts", "coarse: refine"
 
   bool IsValid(std::string* error) const;
 };
 
 struct CoarseResult {
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // the winning start after its ICP (and refinement)
-  MultiStartResult ranking;                                      // empty for kNone
+  MultiStartResult ranking;                                      // empty for kNone unless probe_given_start
   bool fpfh_used = false;
-  FpfhResult fpfh;     // when fpfh_used
-  std::string winner;  // the winning start's label ("identity" for kNone)
+  FpfhResult fpfh;                  // when fpfh_used
+  std::string winner;               // the winning start's label ("identity" for kNone)
   double scan_noise_mm = 0.0;       // the scan's own noise, when scoring by share
   double inlier_distance_mm = 0.0;  // the share's distance as used (0: scored by truncated RMS)
 };
