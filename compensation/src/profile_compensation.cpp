@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include "conform/core/constants.h"
+#include "conform/core/csv.h"
 #include "conform/core/error.h"
 
 namespace conform {
@@ -249,10 +251,65 @@ bool ProfileCompensationOptions::IsValid(std::string* error) const {
     problem = "give the web normal or ask for the fitted plane, not both";
   } else if (!(arc_length_tolerance_mm > 0.0)) {
     problem = "arc_length_tolerance_mm must be positive";
+  } else if (!(gap_warning_mm >= 0.0) || !std::isfinite(gap_warning_mm)) {
+    problem = "gap_warning_mm must be >= 0 (0: from the spacing)";
   }
   if (error != nullptr) *error = problem;
   return problem.empty();
 }
+
+namespace {
+
+// Per feature: the stretches of edge without readings under it (consecutive edge points farther apart along the edge's
+// axis than the limit; Ty ~ the projection on the axis from the first point), and, with one edge, the twist it cannot
+// see. One summary line per kind in r->warnings.
+void warn_per_feature(const ProfileCompensationOptions& options, ProfileCompensationResult* r) {
+  const ProfileEdgePointsCheck& points = r->edge.points;
+  const double limit =
+      options.gap_warning_mm > 0.0 ? options.gap_warning_mm : std::max(20.0, 4.0 * points.median_spacing_mm);
+  std::vector<std::pair<double, double>> gaps;
+  for (std::size_t i = 1; i < points.along_mm.size(); ++i) {
+    if (points.along_mm[i] - points.along_mm[i - 1] > limit) gaps.emplace_back(points.along_mm[i - 1], points.along_mm[i]);
+  }
+  const double per_deg = std::sin(kPi / 180.0);
+  std::size_t twisted = 0;
+  const ProfileFeatureResult* most = nullptr;
+  for (ProfileFeatureResult& f : r->features) {
+    double ty_min = 1e300, ty_max = -1e300, tx_max = 0.0;
+    for (const Eigen::Vector2d& d : f.designed) {
+      ty_min = std::min(ty_min, d.y()), ty_max = std::max(ty_max, d.y()), tx_max = std::max(tx_max, std::abs(d.x()));
+    }
+    if (f.has_centre) {
+      ty_min = std::min(ty_min, f.designed_centre.y()), ty_max = std::max(ty_max, f.designed_centre.y());
+      tx_max = std::max(tx_max, std::abs(f.designed_centre.x()));
+    }
+    for (const auto& [a, b] : gaps) {
+      if (b < ty_min || a > ty_max) continue;
+      f.gap_mm = std::max(f.gap_mm, b - a);
+      const std::string text = "feature " + f.id + " (Ty " + format_fixed(ty_min, 1) + " to " + format_fixed(ty_max, 1) +
+                               " mm) lies over a stretch of edge without readings (Ty " + format_fixed(a, 1) + " to " +
+                               format_fixed(b, 1) + " mm, " + format_fixed(b - a, 1) +
+                               " mm): its position there is interpolated; a kink or bend within it is not seen";
+      f.warnings.push_back(text);
+      r->warnings.push_back(text);
+    }
+    if (!r->local_web && tx_max > 0.0) {
+      f.twist_mm_per_deg = tx_max * per_deg;
+      f.warnings.push_back("twist is not observed with one edge (give --second-edge): 1 deg of twist about the edge "
+                           "moves feature " + f.id + " by " + format_fixed(f.twist_mm_per_deg, 2) + " mm (Tx up to " +
+                           format_fixed(tx_max, 1) + " mm)");
+      ++twisted;
+      if (most == nullptr || f.twist_mm_per_deg > most->twist_mm_per_deg) most = &f;
+    }
+  }
+  if (twisted > 0) {
+    r->warnings.push_back("twist is not observed with one edge (give --second-edge): " + std::to_string(twisted) +
+                          " features off the edge move by Tx sin(twist), up to " +
+                          format_fixed(most->twist_mm_per_deg, 2) + " mm per degree (feature " + most->id + ")");
+  }
+}
+
+}  // namespace
 
 ProfileCompensationResult compensate_profile(const std::vector<Eigen::Vector3d>& edge_points,
                                              const std::vector<ProfileFeature>& features,
@@ -285,6 +342,7 @@ ProfileCompensationResult compensate_profile(const std::vector<Eigen::Vector3d>&
     r.features.push_back(std::move(out));
   }
   if (r.local_web) check_measured_width(features, r.web_width_max_mm, second_edge_source);
+  warn_per_feature(options, &r);
   r.ok = map.converged();
   r.termination = r.ok ? "mapped every feature" : "an arc-length inversion missed its tolerance";
   return r;

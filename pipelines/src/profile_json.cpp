@@ -53,7 +53,10 @@ nlohmann::json profile_json(const ProfileJobOptions& options, const ProfileJobRe
                         {"type", to_string(f.type)},
                         {"points", f.mapped.size()},
                         {"centre_mm", f.has_centre ? json_of(f.centre) : nlohmann::json(nullptr)},
-                        {"cubic_deviation_max_mm", f.cubic_deviation_max_mm}});
+                        {"cubic_deviation_max_mm", f.cubic_deviation_max_mm},
+                        {"gap_mm", f.gap_mm},
+                        {"twist_mm_per_deg", f.twist_mm_per_deg},
+                        {"warnings", f.warnings}});
   }
   return {{"edge_rms_mm", r.edge.rms_mm},
           {"edge_max_mm", r.edge.max_mm},

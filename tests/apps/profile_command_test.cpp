@@ -203,7 +203,9 @@ TEST(ProfileCommand, SpreadsheetEdgeFilesAndTheReversedDirection) {
   const auto j = nlohmann::json::parse(machine.out);
   EXPECT_EQ(j["web"], "machine +z");
   EXPECT_EQ(j["edge_outliers"], 0);
-  EXPECT_TRUE(j["warnings"].empty());
+  ASSERT_EQ(j["warnings"].size(), 1u);  // only the twist one edge cannot see, per feature in "features"
+  EXPECT_NE(j["warnings"][0].get<std::string>().find("twist is not observed"), std::string::npos);
+  for (const auto& f : j["features"]) EXPECT_EQ(f["warnings"].size(), 1u) << f["id"];
 }
 
 }  // namespace

@@ -32,6 +32,9 @@ struct ProfileCompensationOptions {
   double web_width_mm = 0.0;                  // the web's width: features beyond Tx = width are refused; 0: unknown
   bool reversed = false;                      // the edge points are listed from the profile's far end
   double arc_length_tolerance_mm = 1e-7;      // |s(t) - Ty| at every mapped point, mm (> 0)
+  // A feature over a stretch of edge without readings longer than this is warned about (its position there is
+  // interpolated: a kink or bend within the stretch is not seen); 0: 4 x the median spacing, at least 20 mm.
+  double gap_warning_mm = 0.0;
 
   bool IsValid(std::string* error) const;
 };
@@ -49,6 +52,11 @@ struct ProfileFeatureResult {
   Eigen::Vector3d centre_normal = Eigen::Vector3d::UnitZ();     // at the centre
   Eigen::Vector3d centre_direction = Eigen::Vector3d::UnitX();  // the edge's direction at the centre's Ty
   double cubic_deviation_max_mm = 0.0;  // worst |P' - P'_cubic| over the outline and centre; 0 when the model is cubic
+  // What the measurement cannot tell about this feature: it lies over a stretch of edge without readings, or twist is
+  // not observed (one edge) and moves it by Tx sin(twist).
+  std::vector<std::string> warnings;
+  double gap_mm = 0.0;                       // the longest stretch without readings under it (0: none beyond the limit)
+  double twist_mm_per_deg = 0.0;             // one edge: how far 1 deg of twist moves it (max Tx x sin 1 deg); else 0
 };
 
 struct ProfileCompensationResult {
