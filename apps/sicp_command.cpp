@@ -68,6 +68,9 @@ class SicpCommand : public Command {
     c.add_option("--max-edge-offset", o.checks.max_edge_offset_mm,
                  "Where the scan shows its own edge (no flank scanned), rows farther than this across from it are "
                  "untrusted, mm");
+    c.add_option("--max-row-step", o.checks.max_row_step_mm,
+                 "Rows whose correction changes by more than this from the row before (per mm of row spacing), or "
+                 "that step back along the path, are untrusted, mm");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-offset", o.checks.max_offset_mm,

@@ -183,6 +183,38 @@ void judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Traj
                          "densely along the edge");
 }
 
+// Rows whose correction jumps from the row before (more than max_row_step_mm per mm of nominal spacing, at least
+// max_row_step_mm) or that step back along the path: both rows of the pair lose their confidence.
+std::vector<bool> judge_row_steps(const Trajectory& nominal, const Trajectory& t, bool closed,
+                                  const SicpCheckOptions& o, SicpCheck& c) {
+  const std::size_t n = t.points.size();
+  std::vector<bool> jump(n, false);
+  double worst_back = 0.0;
+  for (std::size_t i = closed ? 0 : 1; i < n; ++i) {
+    const std::size_t h = i > 0 ? i - 1 : n - 1;
+    const Eigen::Vector3d step_nominal = nominal.points[i] - nominal.points[h];
+    const double spacing = step_nominal.norm();
+    if (spacing < 1e-9) continue;
+    const double change = ((t.points[i] - nominal.points[i]) - (t.points[h] - nominal.points[h])).norm();
+    const double forward = (t.points[i] - t.points[h]).dot(step_nominal) / spacing;
+    c.max_row_step_mm = std::max(c.max_row_step_mm, change);
+    if (change > o.max_row_step_mm * std::max(1.0, spacing) || forward <= 0.0) {
+      jump[i] = jump[h] = true;
+      if (forward <= 0.0) worst_back = std::max(worst_back, -forward);
+    }
+  }
+  for (bool j : jump) c.jump_rows += j ? 1 : 0;
+  if (c.jump_rows > 0)
+    c.warnings.push_back(std::to_string(c.jump_rows) + " rows jump: their correction changes by up to " +
+                         format_fixed(c.max_row_step_mm, 3) + " mm from one row to the next (more than " +
+                         format_fixed(o.max_row_step_mm, 2) + " mm per mm of row spacing)" +
+                         (worst_back > 0.0
+                              ? ", or they step back along the path (up to " + format_fixed(worst_back, 3) + " mm)"
+                              : std::string()) +
+                         ": check that the contour's closure and spacing match the trajectory");
+  return jump;
+}
+
 // The warnings of blind, bare and outlier segments and far rows, each saying what to change.
 void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c) {
   if (!c.blind_segments.empty())
@@ -224,6 +256,8 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
     why = "largest offset of the path from the scan's edge must be > 0 mm";
   else if (!std::isfinite(edge_window_mm) || edge_window_mm <= 0.0)
     why = "edge window must be > 0 mm";
+  else if (!std::isfinite(max_row_step_mm) || max_row_step_mm <= 0.0)
+    why = "largest step of the correction between rows must be > 0 mm";
   if (why == nullptr) return true;
   if (error != nullptr) *error = why;
   return false;
@@ -258,9 +292,10 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   judge_segments(r, o, scan_noise_mm, c);
   const ContourSegmentation& g = r.segmentation;
   const bool by_segments = !r.segments.empty() && r.segments.size() == g.segments.size();
-  const std::vector<double> s =
-      by_segments ? locate_on_contour(contour, g.arc_length_mm, nominal.points) : std::vector<double>();
-  const KdTree tree(contour.points);
+  std::vector<double> distances;
+  const std::vector<double> s = locate_on_contour(
+      contour, g.arc_length_mm.size() == contour.points.size() ? g.arc_length_mm : arc_lengths(contour), nominal.points,
+      &distances);
   c.rows.resize(nominal.points.size());
   // A closed path (its ends within three median row spacings) wraps for the path direction at its ends.
   bool closed = false;
@@ -275,9 +310,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
     split_correction(nominal, compensated, i, closed, row);
-    float sq = 0.0f;
-    tree.nearest(nominal.points[i].cast<float>(), &sq);
-    row.contour_distance_mm = std::sqrt(static_cast<double>(sq));
+    row.contour_distance_mm = distances[i];
     if (!row_edge_points.empty())
       row.edge_points = row_edge_points[i];
     else if (by_segments)
@@ -286,6 +319,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   const std::vector<double> support =
       by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c) : std::vector<double>(c.rows.size(), 1.0);
   judge_edge_offset(r.scan_edge, compensated, closed, o, c);
+  const std::vector<bool> jumps = judge_row_steps(nominal, compensated, closed, o, c);
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
@@ -295,7 +329,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       row.confidence *= (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
-    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm) row.confidence = 0.0;
+    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i]) row.confidence = 0.0;
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
     c.min_confidence = std::min(c.min_confidence, row.confidence);
   }
@@ -308,6 +342,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
                " rows have a confidence below " + format_fixed(o.min_confidence, 2) + " (" +
                (c.far_rows > 0                       ? "rows far from the contour"
                 : c.off_edge_rows > 0                ? "rows away from the scan's edge"
+                : c.jump_rows > 0                    ? "rows that jump"
                 : c.unmeasured_rows > c.bridged_rows ? "rows without scan of the edge that cannot be bridged"
                                                      : "segments fitting badly or without data") +
                "; see the warnings)";

@@ -45,7 +45,7 @@ bool ToolNormalOptions::IsValid(std::string* error) const {
 }
 
 std::vector<double> locate_on_contour(const Polyline& contour, const std::vector<double>& s,
-                                      const std::vector<Eigen::Vector3d>& points) {
+                                      const std::vector<Eigen::Vector3d>& points, std::vector<double>* distances_mm) {
   if (contour.points.size() < 2) throw Error("contour: fewer than 2 points");
   const KdTree tree(contour.points);
   const std::size_t n = contour.points.size();
@@ -63,6 +63,7 @@ std::vector<double> locate_on_contour(const Polyline& contour, const std::vector
       best = std::min(best, project_on_edge(contour, s, (i + n - 1) % n, points[k], length),
                       [](const auto& a, const auto& b) { return a.second < b.second; });
     result[k] = best.first;
+    if (distances_mm != nullptr) distances_mm->push_back(std::sqrt(best.second));
   }
   return result;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
@@ -18,9 +19,41 @@ const std::vector<std::string> kTrajectoryColumns = {"x_mm", "y_mm", "z_mm", "nx
 
 bool is_csv(const std::string& path) { return file_extension(path) == ".csv"; }
 
-// An ordered point list is closed when its last point is back near its first: a repeated first point is dropped,
-// and a gap no longer than three times the median spacing is the closing edge.
-Polyline contour_from_csv(const std::string& path) {
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// An ordered point list is closed when its last point is back near its first (a repeated first point is dropped):
+// the closing gap is no longer than three median spacings, or, on an unevenly spaced contour (a CAD export with long
+// steps on straight sides and short ones in the bends), no longer than 1.5 times its longest step while the closing
+// edge continues both ends without a turn of more than 45 deg, or the trajectory closes on itself (its first and last
+// rows within three of its median row spacings) and the gap is at most a tenth of the contour. (Three median
+// spacings alone read a triangle with 20 mm steps on its sides and a 16.5 mm closing gap as open: its rows slid.)
+bool closes(const Polyline& c, const Trajectory& trajectory) {
+  std::vector<double> spacing;
+  for (std::size_t i = 1; i < c.points.size(); ++i) spacing.push_back((c.points[i] - c.points[i - 1]).norm());
+  const double longest = *std::max_element(spacing.begin(), spacing.end());
+  const double median = median_of(spacing);
+  const Eigen::Vector3d closing = c.points.front() - c.points.back();
+  const double gap = closing.norm();
+  if (gap <= 3.0 * median) return true;
+  const Eigen::Vector3d last = c.points.back() - c.points[c.points.size() - 2];
+  const Eigen::Vector3d first = c.points[1] - c.points.front();
+  const double cos45 = std::sqrt(0.5);
+  if (gap <= 1.5 * longest && closing.dot(last) >= cos45 * gap * last.norm() &&
+      closing.dot(first) >= cos45 * gap * first.norm())
+    return true;
+  std::vector<double> rows;
+  for (std::size_t i = 1; i < trajectory.points.size(); ++i)
+    rows.push_back((trajectory.points[i] - trajectory.points[i - 1]).norm());
+  const bool trajectory_closed = trajectory.points.size() >= 3 &&
+                                 (trajectory.points.back() - trajectory.points.front()).norm() <= 3.0 * median_of(rows);
+  return trajectory_closed && gap <= 0.1 * (std::accumulate(spacing.begin(), spacing.end(), 0.0) + gap);
+}
+
+Polyline contour_from_csv(const std::string& path, const Trajectory& trajectory) {
   const CsvTable table = read_csv(path, {"x_mm", "y_mm", "z_mm"});
   if (table.rows() < 3)
     throw Error(path + ": a contour needs at least 3 points, the file has " + std::to_string(table.rows()));
@@ -29,11 +62,11 @@ Polyline contour_from_csv(const std::string& path) {
   for (Eigen::Index i = 0; i < xyz.rows(); ++i) c.points.emplace_back(xyz(i, 0), xyz(i, 1), xyz(i, 2));
   std::vector<double> spacing;
   for (std::size_t i = 1; i < c.points.size(); ++i) spacing.push_back((c.points[i] - c.points[i - 1]).norm());
-  std::nth_element(spacing.begin(), spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2), spacing.end());
-  const double median = spacing[spacing.size() / 2];
   const double gap = (c.points.back() - c.points.front()).norm();
-  if (gap <= 1e-9 * std::max(1.0, median)) c.points.pop_back();
-  c.closed = gap <= 3.0 * median;
+  if (gap <= 1e-9 * std::max(1.0, median_of(spacing))) c.points.pop_back();
+  if (c.points.size() < 3)
+    throw Error(path + ": a contour needs at least 3 distinct points, the file has " + std::to_string(c.points.size()));
+  c.closed = closes(c, trajectory);
   return c;
 }
 
@@ -167,7 +200,7 @@ SicpJobResult run_sicp(const SicpJobOptions& options) {
   }
   Polyline contour;
   if (is_csv(options.contour_path)) {
-    contour = contour_from_csv(options.contour_path);
+    contour = contour_from_csv(options.contour_path, nominal);
     result.contour_source = "csv";
   } else {
     const Mesh mesh = read_mesh(options.contour_path, read);

@@ -96,6 +96,8 @@ nlohmann::json sicp_json(const SicpJobResult& r) {
                         {"longest_gap_mm", c.check.longest_gap_mm},
                         {"off_edge_rows", c.check.off_edge_rows},
                         {"max_edge_offset_mm", c.check.max_edge_offset_mm},
+                        {"jump_rows", c.check.jump_rows},
+                        {"max_row_step_mm", c.check.max_row_step_mm},
                         {"min_confidence", c.check.min_confidence}}},
                       {"trusted", c.trusted},
                       {"out_trajectory", r.out_trajectory_path},

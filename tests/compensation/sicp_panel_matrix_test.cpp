@@ -14,8 +14,12 @@
 #include <gtest/gtest.h>
 
 #include "conform/compensation/trajectory_error.h"
+#include "conform/core/constants.h"
+#include "conform/core/csv.h"
 #include "conform/datasets/panel.h"
+#include "conform/pipelines/generate_panel.h"
 #include "conform/pipelines/sicp.h"
+#include "temp_dir.h"
 
 namespace conform {
 namespace {
@@ -114,6 +118,95 @@ TEST(SicpPanelMatrix, EveryModel) {
         }
       }
     }
+  }
+}
+
+Polyline read_contour(const std::string& path) {
+  const Eigen::MatrixXd xyz = read_csv(path, {"x_mm", "y_mm", "z_mm"}).numbers({"x_mm", "y_mm", "z_mm"});
+  Polyline c;
+  for (Eigen::Index i = 0; i < xyz.rows(); ++i) c.points.emplace_back(xyz(i, 0), xyz(i, 1), xyz(i, 2));
+  c.closed = true;  // the generator's contour
+  return c;
+}
+
+// A CAD export's contour: long steps on the straight sides (25 mm), 1-4 mm in the bends (every degree of turn),
+// starting mid-side with a closing gap of 16.5 mm: many median spacings, open by spacing alone.
+void write_uneven_contour(const Polyline& dense, const std::string& path) {
+  const std::size_t n = dense.points.size(), start = n / 7;
+  std::vector<Eigen::Vector3d> kept{dense.points[start]};
+  double arc = 0.0, turn = 0.0, left = length(dense);
+  for (std::size_t k = 1; k < n; ++k) {
+    const Eigen::Vector3d& a = dense.points[(start + k - 1) % n];
+    const Eigen::Vector3d& b = dense.points[(start + k) % n];
+    const Eigen::Vector3d& c = dense.points[(start + k + 1) % n];
+    arc += (b - a).norm();
+    left -= (b - a).norm();
+    if (left < 16.5) break;  // the closing gap: 16.5 mm
+    turn += std::acos(std::clamp((b - a).normalized().dot((c - b).normalized()), -1.0, 1.0));
+    if (arc >= 25.0 || turn >= kPi / 180.0) kept.push_back(b), arc = 0.0, turn = 0.0;
+  }
+  CsvWriter writer({"x_mm", "y_mm", "z_mm"}, 6);
+  for (const Eigen::Vector3d& p : kept) {
+    for (int k = 0; k < 3; ++k) writer.cell(p(k));
+    writer.end_row();
+  }
+  writer.write(path);
+}
+
+// Uneven CAD contours: closed by their geometry (the closing edge continues both ends), the path meets the bar and
+// is trusted. Before, three median spacings read them as open and rows slid 1.2 mm.
+TEST(SicpPanelMatrix, UnevenContours) {
+  for (const PlateOpening opening : {PlateOpening::kEllipse, PlateOpening::kRoundedRectangle}) {
+    for (const std::uint64_t seed : {31, 32}) {
+      test::TempDir dir;
+      GeneratePanelOptions g;
+      g.panel = new_panel(opening, seed);
+      g.out_path = dir.file("p.ply");
+      const GeneratePanelResult panel = run_generate_panel(g);
+      write_uneven_contour(read_contour(panel.files.contour), dir.file("uneven.csv"));
+      const Polyline uneven = read_contour(dir.file("uneven.csv"));
+      std::vector<double> steps;
+      for (std::size_t i = 1; i < uneven.points.size(); ++i)
+        steps.push_back((uneven.points[i] - uneven.points[i - 1]).norm());
+      std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+      const std::string what = name(std::string("uneven contour ") + to_string(opening), seed);
+      EXPECT_GT((uneven.points.back() - uneven.points.front()).norm(), 3.0 * steps[steps.size() / 2]) << what;
+      SicpJobOptions o;
+      o.contour_path = dir.file("uneven.csv");
+      o.scan_path = panel.files.scan;
+      o.trajectory_path = panel.files.trajectory;
+      o.surface_path = panel.files.nominal;
+      o.truth_path = panel.files.truth_trajectory;
+      const SicpJobResult r = run_sicp(o);
+      EXPECT_EQ(r.contour_source, "csv (closed)") << what;
+      PanelRun run{r.compensation, *r.error};
+      EXPECT_TRUE(meets_bar_or_refused(run, what)) << what;
+    }
+  }
+}
+
+// Rows that jump are never trusted: one row stepped back 0.19 mm along the path, or its correction changing by
+// 0.5 mm from the row before.
+TEST(SicpPanelMatrix, RowsThatJumpAreRefused) {
+  Polyline contour;
+  Trajectory nominal;
+  for (int i = 0; i <= 200; ++i) {
+    contour.points.emplace_back(i, 0.0, 0.0);
+    nominal.points.emplace_back(i, 0.0, 0.0);
+    nominal.normals.emplace_back(0.0, 0.0, 1.0);
+  }
+  SicpResult registration;
+  registration.converged = true;
+  for (const Eigen::Vector3d& jump : {Eigen::Vector3d(-1.19, 0.0, 0.0), Eigen::Vector3d(0.0, 0.5, 0.0)}) {
+    Trajectory compensated = nominal;
+    for (Eigen::Vector3d& p : compensated.points) p += Eigen::Vector3d(0.0, 0.3, 0.1);
+    const SicpCheck smooth = check_sicp_path(contour, registration, nominal, compensated, SicpCheckOptions{});
+    EXPECT_TRUE(smooth.trusted) << smooth.reason;
+    compensated.points[100] += jump;
+    const SicpCheck c = check_sicp_path(contour, registration, nominal, compensated, SicpCheckOptions{});
+    EXPECT_FALSE(c.trusted);
+    EXPECT_EQ(c.jump_rows, 3u);
+    EXPECT_NE(c.reason.find("jump"), std::string::npos) << c.reason;
   }
 }
 

@@ -43,6 +43,10 @@ struct SicpCheckOptions {
   // trusted, > 0.
   double max_edge_offset_mm = 0.5;
   double edge_window_mm = 5.0;
+  // A row whose correction changes by more than this from the row before (per mm of nominal row spacing, at least
+  // this), or that steps back along the path, is not trusted: a smooth deformation moves neighbouring rows alike
+  // (the truth's steps on the generated panels: 0.01-0.06 mm per 1 mm row), > 0.
+  double max_row_step_mm = 0.2;
   bool IsValid(std::string* error) const;
 };
 
@@ -71,6 +75,8 @@ struct SicpCheck {
   std::size_t unmeasured_rows = 0;            // fewer than min_edge_points scan points within edge_radius_mm
   std::size_t bridged_rows = 0;               // unmeasured, on a stretch bridged from its measured ends
   std::size_t off_edge_rows = 0;              // farther than max_edge_offset_mm across from the scan's edge
+  std::size_t jump_rows = 0;                  // correction jumped by more than max_row_step_mm, or stepped back
+  double max_row_step_mm = 0.0;               // the largest change of the correction between consecutive rows
   double max_edge_offset_mm = 0.0;            // the largest |edge_offset_mm|
   double longest_gap_mm = 0.0;                // the longest unmeasured stretch of path
   double min_confidence = 0.0;

@@ -39,9 +39,12 @@ struct ToolNormalOptions {
 };
 
 // Arc length along the contour of each point's orthogonal projection onto the contour's nearest edges (continuous as
-// the point moves, unlike its nearest contour vertex). Throws conform::Error for an empty contour.
+// the point moves, unlike its nearest contour vertex); with distances_mm, also each point's distance from that
+// projection (from the contour's edges, not its vertices: a CAD contour may have 20 mm steps). Throws
+// conform::Error for an empty contour.
 std::vector<double> locate_on_contour(const Polyline& contour, const std::vector<double>& arc_length_mm,
-                                      const std::vector<Eigen::Vector3d>& points);
+                                      const std::vector<Eigen::Vector3d>& points,
+                                      std::vector<double>* distances_mm = nullptr);
 
 // Positions and predicted normals by the blended segment transforms (T_scan_nominal, one per segment).
 Trajectory map_by_segments(const Trajectory& nominal, const Polyline& contour, const ContourSegmentation& segmentation,
