@@ -75,7 +75,10 @@ TEST(ProfileReport, PageDrawsTheFeaturesAndShowsItsJson) {
   o.edge_path = "p.csv";
   o.features_path = "p.features.csv";
   const html::Page page = profile_report(o, job);
-  EXPECT_EQ(page.verdict.level, html::Level::kOk);
+  // One edge: the twist it cannot see is a warning per feature, so the page asks for a check.
+  EXPECT_EQ(page.verdict.level, html::Level::kCheck);
+  ASSERT_FALSE(page.warnings.empty());
+  EXPECT_NE(page.warnings.back().find("twist is not observed"), std::string::npos);
   EXPECT_GT(test::expect_cells_show_the_json(page), 20u);
   const html::SceneObject* mapped = test::scene_object(page, "features, mapped (deformed profile)");
   ASSERT_NE(mapped, nullptr);
