@@ -2,7 +2,9 @@
 
 Every job runs the pipeline the CLI runs (same options, same defaults, same messages, same numbers) and returns a
 `Result` whose fields are the keys of the CLI's `--json` output, plus per-point numpy arrays aligned with the input
-(NaN where unmatched). Bad input raises `conform.Error` with the CLI's message. See docs/python.md.
+(NaN where unmatched). Bad input raises `conform.Error` with the CLI's message, worded for the caller: a flag named as
+the keyword argument it is (`cad_deflection`, not `--cad-deflection`), geometry given in memory as its argument, not
+as a temporary file. See docs/python.md.
 
 Output files are checked as the CLI checks them, before any work: an output that is one of the call's inputs (also
 through a symbolic or a hard link) or that is given twice raises `conform.Error`; the files of one call are written

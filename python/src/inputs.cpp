@@ -3,12 +3,14 @@
 #include <stdlib.h>  // mkdtemp
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <limits>
 #include <mutex>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -112,6 +114,48 @@ std::string path_of(const py::handle& value) {
   if (value.is_none()) return "";
   if (!is_path(value)) throw Error("expected a path (str or os.PathLike)");
   return py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+}
+
+std::string for_python(const std::string& message) {
+  static const std::regex temporary(R"(\S*/conform-py-[A-Za-z0-9]{6}/(\w+)\.(ply|txt))");
+  static const std::regex flag(R"(--([a-z][a-z0-9]*(-[a-z0-9]+)*))");
+  const std::string text = std::regex_replace(message, temporary, "the $1 argument (given in memory)");
+  std::string out;
+  std::size_t done = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), flag); it != std::sregex_iterator(); ++it) {
+    const std::size_t at = static_cast<std::size_t>(it->position(0));
+    // A flag starts a word: "--cad-deflection", not the middle of "a--b".
+    if (at > 0 && !std::isspace(static_cast<unsigned char>(text[at - 1])) &&
+        std::string("('\"").find(text[at - 1]) == std::string::npos) {
+      continue;
+    }
+    std::string name = (*it)[1].str();
+    std::replace(name.begin(), name.end(), '-', '_');
+    out += text.substr(done, at - done) + name;
+    done = at + static_cast<std::size_t>(it->length(0));
+  }
+  return out + text.substr(done);
+}
+
+void set_cad_options(const py::handle& deflection, const py::handle& angle_deg, const py::handle& save_mesh,
+                     CadReadOptions& cad) {
+  if (!deflection.is_none()) {
+    const double mm = deflection.cast<double>();
+    if (!(mm > 0.0) || !std::isfinite(mm)) {
+      throw Error("cad_deflection: the tessellation's chordal deflection must be a finite number of mm above 0, got " +
+                  std::string(py::str(deflection)));
+    }
+    cad.deflection_mm = mm;
+  }
+  if (!angle_deg.is_none()) {
+    const double deg = angle_deg.cast<double>();
+    if (!(deg > 0.0 && deg <= 90.0)) {
+      throw Error("cad_angle_deg: the angular deflection must be in (0, 90] deg, got " +
+                  std::string(py::str(angle_deg)));
+    }
+    cad.angular_deflection_rad = deg * M_PI / 180.0;
+  }
+  cad.save_mesh_path = path_of(save_mesh);
 }
 
 Inputs::~Inputs() {

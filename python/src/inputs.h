@@ -8,6 +8,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/core/progress.h"
 
@@ -46,6 +47,17 @@ class Inputs {
 
 // A str or os.PathLike as a path; None as "".
 std::string path_of(const py::handle& value);
+
+// A conform::Error's message as a Python caller reads it: the CLI's flags (--cad-deflection) named as the keyword
+// arguments they are (cad_deflection), and a temporary file that holds geometry given in memory named as the argument
+// it came from ("the scan argument (given in memory)"), not as a path the caller never saw.
+std::string for_python(const std::string& message);
+
+// The CAD keyword arguments of the jobs that read geometry (the CLI's --cad-deflection, --cad-angle-deg,
+// --cad-save-mesh): cad_deflection (mm, > 0), cad_angle_deg (in (0, 90]; None: matched to the deflection),
+// cad_save_mesh (a path); None leaves the default. Errors name the argument.
+void set_cad_options(const py::handle& deflection, const py::handle& angle_deg, const py::handle& save_mesh,
+                     CadReadOptions& cad);
 
 // The Python progress callable as a ProgressFn that takes the GIL to call it (from any thread). The first exception
 // the callable raises is kept (later calls are skipped) and raised by rethrow() once the job has returned.

@@ -15,8 +15,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "conform/pipelines/deviation_colours.h"
-#include "conform/pipelines/deviation_histogram.h"
 #include "bindings.h"
 #include "conform/core/error.h"
 #include "conform/core/io.h"
@@ -25,6 +23,8 @@
 #include "conform/pipelines/align_report.h"
 #include "conform/pipelines/compare_json.h"
 #include "conform/pipelines/compare_report.h"
+#include "conform/pipelines/deviation_colours.h"
+#include "conform/pipelines/deviation_histogram.h"
 #include "conform/pipelines/export_json.h"
 #include "conform/pipelines/fit_cylinder_json.h"
 #include "conform/pipelines/fit_cylinder_report.h"
@@ -39,13 +39,16 @@
 namespace conform::python {
 namespace {
 
-std::shared_ptr<Geometry> job_read(const py::object& path_value, const std::string& units) {
+std::shared_ptr<Geometry> job_read(const py::object& path_value, const std::string& units,
+                                   const py::object& cad_deflection, const py::object& cad_angle_deg) {
   auto geometry = std::make_shared<Geometry>();
   geometry->path = path_of(path_value);
   const double mm_per_unit = millimetres_per_unit(units);
+  ReadOptions read;
+  set_cad_options(cad_deflection, cad_angle_deg, py::none(), read.cad);
   py::gil_scoped_release release;
   ReadReport report;
-  geometry->mesh = read_geometry(geometry->path, {}, &report);
+  geometry->mesh = read_geometry(geometry->path, read, &report);
   if (mm_per_unit != 1.0) scale_in_place(geometry->mesh, mm_per_unit);
   geometry->warnings = report.warnings;
   return geometry;
@@ -65,10 +68,14 @@ py::array faces_view(const py::object& self, std::vector<Face>& faces) {
 
 py::tuple job_compare(const py::object& scan, const py::object& reference, const py::object& transform,
                       std::optional<double> tolerance, const py::object& out_deviation, const py::object& out_histogram,
-                      const std::string& units, const py::object& report, const py::object& progress_callback) {
+                      const std::string& units, bool flat_facets, const py::object& cad_deflection,
+                      const py::object& cad_angle_deg, const py::object& cad_save_mesh, const py::object& report,
+                      const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
   Inputs inputs;
   CompareOptions options;
+  options.flat_facets = flat_facets;
+  set_cad_options(cad_deflection, cad_angle_deg, cad_save_mesh, options.cad);
   options.scan_path = inputs.geometry(scan, "scan");
   options.reference_path = inputs.geometry(reference, "reference");
   options.transform_path = inputs.transform(transform, "transform");
@@ -86,7 +93,7 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   options.progress = progress.function();
   options.keep_geometry = !report_path.empty();
   CallFiles files({options.scan_path, options.reference_path, options.transform_path},
-                  {options.out_deviation_path, options.out_histogram_path, report_path});
+                  {options.out_deviation_path, options.out_histogram_path, report_path, options.cad.save_mesh_path});
   CompareResult result = released(progress, [&] { return run_compare(options); });
   const nlohmann::json j = compare_json(options, result, units);
   if (!report_path.empty()) write_report(report_path, compare_report(options, result, j, ""));
@@ -106,11 +113,12 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
                     const std::string& init, double max_distance, double overlap, int max_iterations,
                     double free_tolerance_mm, double free_tolerance_deg, double pose_tolerance_mm, double tolerance,
                     double max_noise_ratio, const std::string& units, const py::object& out_transform,
-                    const py::object& out_aligned,
-                    const py::object& report, const py::object& progress_callback) {
+                    const py::object& out_aligned, const py::object& cad_deflection, const py::object& cad_angle_deg,
+                    const py::object& cad_save_mesh, const py::object& report, const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
   Inputs inputs;
   AlignOptions options;
+  set_cad_options(cad_deflection, cad_angle_deg, cad_save_mesh, options.cad);
   options.scan_path = inputs.geometry(scan, "scan");
   options.reference_path = inputs.geometry(reference, "reference");
   options.mm_per_unit = millimetres_per_unit(units);
@@ -130,7 +138,7 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   options.progress = progress.function();
   options.keep_geometry = !report_path.empty();
   CallFiles files({options.scan_path, options.reference_path, init.rfind("pairs:", 0) == 0 ? init.substr(6) : ""},
-                  {options.out_transform_path, options.out_aligned_path, report_path});
+                  {options.out_transform_path, options.out_aligned_path, report_path, options.cad.save_mesh_path});
   const AlignResult result = released(progress, [&] { return run_align(options); });
   const nlohmann::json j = align_json(result);
   if (!report_path.empty()) write_report(report_path, align_report(options, result, j, ""));
@@ -140,16 +148,15 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   return answer(j, arrays);
 }
 
-py::tuple job_export(const py::object& path, const std::string& format, const py::object& out,
-                     const py::object& frame, double speed_mm_s, double approach_speed_mm_s, double approach_mm,
-                     const std::string& name, const std::string& tool, const std::string& work_object,
-                     std::size_t max_points, bool three_axis, double roll_cone_deg,
-                     const std::vector<double>& preferred_x) {
+py::tuple job_export(const py::object& path, const std::string& format, const py::object& out, const py::object& frame,
+                     double speed_mm_s, double approach_speed_mm_s, double approach_mm, const std::string& name,
+                     const std::string& tool, const std::string& work_object, std::size_t max_points, bool three_axis,
+                     double roll_cone_deg, const std::vector<double>& preferred_x) {
   static const char* const formats[] = {"krl", "rapid", "urscript", "fanuc", "val3", "gcode", "csv"};
   if (std::find(std::begin(formats), std::end(formats), format) == std::end(formats)) {
-    throw Error("--format: " + format + " not in {krl, rapid, urscript, fanuc, val3, gcode, csv}");
+    throw Error("format: " + format + " not in {krl, rapid, urscript, fanuc, val3, gcode, csv}");
   }
-  if (preferred_x.size() != 3) throw Error("--preferred-x: give three numbers x,y,z");
+  if (preferred_x.size() != 3) throw Error("preferred_x: give three numbers x, y, z");
   Inputs inputs;
   ExportJobOptions o;
   o.path_csv = path_of(path);
@@ -214,10 +221,9 @@ py::tuple job_generate_eroded(const py::object& out, int rows, int cols, double 
 py::tuple job_generate_profile(const py::object& out, double length, double width, double bow, double bow_asymmetry,
                                double bow_out, double twist_deg, double kink_deg, double kink_at, double kink_length,
                                double spacing, double noise, double dropouts, bool second_edge, int holes,
-                               double hole_radius, double hole_tx, bool marking_line, int outliers,
-                               double outlier_mm, const std::vector<double>& offset, bool reverse,
-                               std::uint64_t seed) {
-  if (offset.size() != 3) throw Error("--offset: give three numbers x,y,z");
+                               double hole_radius, double hole_tx, bool marking_line, int outliers, double outlier_mm,
+                               const std::vector<double>& offset, bool reverse, std::uint64_t seed) {
+  if (offset.size() != 3) throw Error("offset: give three numbers x, y, z");
   GenerateProfileRequest r;
   ProfileDeformationOptions& d = r.scan.deformation;
   d.length_mm = length;
@@ -269,23 +275,25 @@ py::tuple job_pose_error(const py::object& a, const py::object& b, const std::st
 py::tuple job_fit_cylinder(const py::object& input, double threshold, double min_radius,
                            std::optional<double> max_radius, std::optional<std::vector<double>> axis,
                            double axis_tolerance_deg, int normals_k, std::uint64_t seed, double max_shape_ambiguity,
-                           const std::string& points,
-                           std::size_t surface_samples, const py::object& out, const py::object& report,
+                           const std::string& points, std::size_t surface_samples, const py::object& out,
+                           const py::object& cad_deflection, const py::object& cad_angle_deg,
+                           const py::object& cad_save_mesh, const py::object& report,
                            const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
   if (points != "auto" && points != "vertices" && points != "surface") {
-    throw Error("--points: " + points + " not in {auto, vertices, surface}");
+    throw Error("points: " + points + " not in {auto, vertices, surface}");
   }
   Inputs inputs;
   FitCylinderJobOptions options;
+  set_cad_options(cad_deflection, cad_angle_deg, cad_save_mesh, options.cad);
   options.input_path = inputs.geometry(input, "input");
   options.fit.threshold_mm = threshold;
   options.fit.min_radius_mm = min_radius;
   if (max_radius) options.fit.max_radius_mm = *max_radius;
   if (axis) {
-    if (axis->size() != 3) throw Error("--axis: give three numbers x y z");
+    if (axis->size() != 3) throw Error("axis: give three numbers x, y, z");
     options.fit.axis_prior = Eigen::Vector3d((*axis)[0], (*axis)[1], (*axis)[2]);
-    if (!(options.fit.axis_prior.norm() > 0.0)) throw Error("--axis: the direction is zero");
+    if (!(options.fit.axis_prior.norm() > 0.0)) throw Error("axis: the direction is zero");
   }
   options.fit.axis_prior_tolerance_rad = axis_tolerance_deg / 180.0 * 3.141592653589793;
   options.fit.normal_neighbors = normals_k;
@@ -299,7 +307,7 @@ py::tuple job_fit_cylinder(const py::object& input, double threshold, double min
   options.keep_geometry = !report_path.empty();
   const Progress progress(progress_callback);
   options.fit.progress = progress.function();
-  CallFiles files({options.input_path}, {options.out_path, report_path});
+  CallFiles files({options.input_path}, {options.out_path, report_path, options.cad.save_mesh_path});
   FitCylinderJobResult result = released(progress, [&] { return run_fit_cylinder(options); });
   const nlohmann::json j = fit_cylinder_json(result);
   if (!report_path.empty()) write_report(report_path, fit_cylinder_report(options, result, j, ""));
@@ -362,7 +370,15 @@ PYBIND11_MODULE(_conform, m) {
   using namespace conform::python;
   using py::arg;
   m.doc() = "conform's jobs (the CLI's pipelines); use the `conform` package, which wraps this module";
-  py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  // conform.Error (a ValueError) with the message as a Python caller reads it (inputs.h, for_python).
+  static py::exception<Error> error_type(m, "Error", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const Error& e) {
+      error_type(for_python(e.what()).c_str());
+    }
+  });
 
   py::class_<Geometry, std::shared_ptr<Geometry>>(m, "Geometry", "A mesh or cloud as read: mm, views, not copies")
       .def_property_readonly("points",
@@ -379,19 +395,22 @@ PYBIND11_MODULE(_conform, m) {
                std::to_string(g.mesh.faces.size()) + " faces, normals: " + (g.mesh.has_normals() ? "yes" : "no") + ">";
       });
 
-  m.def("read", &job_read, arg("path"), arg("units") = "mm");
+  m.def("read", &job_read, arg("path"), arg("units") = "mm", py::kw_only(), arg("cad_deflection") = py::none(),
+        arg("cad_angle_deg") = py::none());
   m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
         arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
-        arg("out_histogram") = py::none(), arg("units") = "mm", arg("report") = py::none(),
-        arg("progress") = py::none());
+        arg("out_histogram") = py::none(), arg("units") = "mm", arg("flat_facets") = false,
+        arg("cad_deflection") = py::none(), arg("cad_angle_deg") = py::none(), arg("cad_save_mesh") = py::none(),
+        arg("report") = py::none(), arg("progress") = py::none());
   const AlignOptions align;
   m.def("align", &job_align, arg("scan"), arg("reference"), py::kw_only(), arg("method") = "", arg("init") = "none",
         arg("max_distance") = align.max_distance_mm, arg("overlap") = align.overlap,
         arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
         arg("free_tolerance_deg") = align.free_tolerance_deg, arg("pose_tolerance_mm") = align.pose_tolerance_mm,
-        arg("tolerance") = align.tolerance_mm, arg("max_noise_ratio") = align.max_noise_ratio,
-        arg("units") = "mm", arg("out_transform") = py::none(), arg("out_aligned") = py::none(),
-        arg("report") = py::none(), arg("progress") = py::none());
+        arg("tolerance") = align.tolerance_mm, arg("max_noise_ratio") = align.max_noise_ratio, arg("units") = "mm",
+        arg("out_transform") = py::none(), arg("out_aligned") = py::none(), arg("cad_deflection") = py::none(),
+        arg("cad_angle_deg") = py::none(), arg("cad_save_mesh") = py::none(), arg("report") = py::none(),
+        arg("progress") = py::none());
   const ProgramOptions program;
   m.def("export", &job_export, arg("path"), py::kw_only(), arg("format"), arg("out"), arg("frame") = py::none(),
         arg("speed_mm_s") = program.speed_mm_s, arg("approach_speed_mm_s") = program.approach_speed_mm_s,
@@ -411,10 +430,10 @@ PYBIND11_MODULE(_conform, m) {
   m.def("generate_profile", &job_generate_profile, arg("out"), py::kw_only(), arg("length") = bend.length_mm,
         arg("width") = bend.width_mm, arg("bow") = bend.bow_in_plane_mm, arg("bow_asymmetry") = bend.bow_asymmetry,
         arg("bow_out") = bend.bow_out_of_plane_mm, arg("twist_deg") = 0.0, arg("kink_deg") = 0.0,
-        arg("kink_at") = bend.kink_at_mm, arg("kink_length") = bend.kink_length_mm,
-        arg("spacing") = profile.spacing_mm, arg("noise") = profile.noise_mm,
-        arg("dropouts") = profile.dropout_fraction, arg("second_edge") = profile.second_edge,
-        arg("holes") = profile.holes, arg("hole_radius") = profile.hole_radius_mm, arg("hole_tx") = profile.hole_tx_mm,
+        arg("kink_at") = bend.kink_at_mm, arg("kink_length") = bend.kink_length_mm, arg("spacing") = profile.spacing_mm,
+        arg("noise") = profile.noise_mm, arg("dropouts") = profile.dropout_fraction,
+        arg("second_edge") = profile.second_edge, arg("holes") = profile.holes,
+        arg("hole_radius") = profile.hole_radius_mm, arg("hole_tx") = profile.hole_tx_mm,
         arg("marking_line") = profile.marking_line, arg("outliers") = profile.outliers,
         arg("outlier_mm") = profile.outlier_mm, arg("offset") = std::vector<double>{0.0, 0.0, 0.0},
         arg("reverse") = profile.reversed, arg("seed") = profile.seed);
@@ -424,9 +443,9 @@ PYBIND11_MODULE(_conform, m) {
         arg("min_radius") = cylinder.fit.min_radius_mm, arg("max_radius") = py::none(), arg("axis") = py::none(),
         arg("axis_tolerance_deg") = 10.0, arg("normals_k") = cylinder.fit.normal_neighbors,
         arg("seed") = cylinder.fit.seed, arg("max_shape_ambiguity") = cylinder.fit.max_shape_ambiguity_mm,
-        arg("points") = to_string(cylinder.points),
-        arg("surface_samples") = cylinder.surface_samples, arg("out") = py::none(), arg("report") = py::none(),
-        arg("progress") = py::none());
+        arg("points") = to_string(cylinder.points), arg("surface_samples") = cylinder.surface_samples,
+        arg("out") = py::none(), arg("cad_deflection") = py::none(), arg("cad_angle_deg") = py::none(),
+        arg("cad_save_mesh") = py::none(), arg("report") = py::none(), arg("progress") = py::none());
   const SaddleRequest saddle_defaults;
   m.def("saddle", &job_saddle, py::kw_only(), arg("R"), arg("r"), arg("right_angle_pose_deg"),
         arg("pitch_deg") = saddle_defaults.pitch_deg, arg("offset") = saddle_defaults.offset_mm,

@@ -1,5 +1,6 @@
 // conform._conform's path-planning jobs and a generator: profile, tube_joint, weld_layers, sicp, generate_tube
-// (module.cpp has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request structs.
+// (module.cpp has the measuring jobs). Keyword arguments are the CLI's flags; defaults come from the Options or Request
+// structs.
 
 #include <algorithm>
 #include <array>
@@ -41,11 +42,10 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
   if (options.reference_path.empty() && !reference_from_border) {
     throw Error("weld-layers: give --reference FILE or --reference-from-border");
   }
-  if (layers < 0 || layers > kMaxWeldLayers)
-    throw Error("--layers: not in [0, " + std::to_string(kMaxWeldLayers) + "]");
-  if (outward < -1 || outward > 1) throw Error("--outward: not in [-1, 1]");
+  if (layers < 0 || layers > kMaxWeldLayers) throw Error("layers: not in [0, " + std::to_string(kMaxWeldLayers) + "]");
+  if (outward < -1 || outward > 1) throw Error("outward: not in [-1, 1]");
   if (bias != "check" && bias != "remove" && bias != "keep")
-    throw Error("--bias: " + bias + " not in {check, remove, keep}");
+    throw Error("bias: " + bias + " not in {check, remove, keep}");
   options.weld.bead_spacing_mm = bead_spacing;
   options.weld.layer_height_mm = layer_height;
   options.weld.chord_error_mm = chord_error;
@@ -95,7 +95,7 @@ py::tuple job_profile(const py::object& edge, const py::object& features, const 
   request.out_path = path_of(out);
   request.model = model;
   if (web_normal) {
-    if (web_normal->size() != 3) throw Error("--web-normal: give three numbers x,y,z");
+    if (web_normal->size() != 3) throw Error("web_normal: give three numbers x, y, z");
     request.web_normal = Eigen::Vector3d((*web_normal)[0], (*web_normal)[1], (*web_normal)[2]);
   }
   request.web_plane = web_plane;
@@ -193,7 +193,9 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
                                       "weld_standoff",    "k_normals",
                                       "k_refine",         "out_path",
                                       "out_cut",          "out_weld",
-                                      "report",           "progress"};
+                                      "report",           "progress",
+                                      "cad_deflection",   "cad_angle_deg",
+                                      "cad_save_mesh"};
   for (const auto& item : kw) {
     const std::string name = py::str(item.first);
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return name == k; }) == std::end(known)) {
@@ -227,14 +229,15 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   o.out_path = path_of(take("out_path"));
   o.out_cut = path_of(take("out_cut"));
   o.out_weld = path_of(take("out_weld"));
+  set_cad_options(take("cad_deflection"), take("cad_angle_deg"), take("cad_save_mesh"), o.cad);
   const std::string report_path = report_path_of(take("report"));
   TubeJointJobOptions options = tube_joint_job_options(request);
   options.keep_geometry = !report_path.empty();
   const Progress progress(take("progress"));
   options.solve.progress = progress.function();
-  CallFiles files({o.leg_path, o.stub_path, o.leg_pose_path, o.leg_markers_path, o.stub_markers_path,
-                   request.groove_table_path},
-                  {o.out_path, o.out_cut, o.out_weld, report_path});
+  CallFiles files(
+      {o.leg_path, o.stub_path, o.leg_pose_path, o.leg_markers_path, o.stub_markers_path, request.groove_table_path},
+      {o.out_path, o.out_cut, o.out_weld, report_path, o.cad.save_mesh_path});
   TubeJointJobResult job = released(progress, [&] { return run_tube_joint(options); });
   if (!report_path.empty()) write_report(report_path, tube_joint_report(options, job));
   files.commit();
@@ -286,7 +289,7 @@ py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
       field = py::object(kw[name]).cast<std::remove_reference_t<decltype(field)>>();
     }
   };
-  if (kw.contains("edge") && kw.contains("vertices")) throw Error("--edge excludes --vertices");
+  if (kw.contains("edge") && kw.contains("vertices")) throw Error("edge excludes vertices: give one");
   set("radius", r.tube.radius_mm);
   set("length", r.tube.length_mm);
   set("arc_deg", r.arc_deg);
@@ -330,11 +333,12 @@ py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
 py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::object& trajectory,
                    const py::kwargs& kw) {
   check_keywords("sicp", kw,
-                 {"surface", "segment_length", "overlap", "curvature_radius", "model", "projection_fit",
-                  "neighbourhood", "stability", "max_distance", "coarse_max_distance", "scan_voxel", "no_joint",
-                  "joint_weight", "joint_damping", "max_iterations", "min_edge_points", "edge_radius", "max_edge_gap",
-                  "outlier_ratio", "max_offset", "normal_smoothing", "normals", "truth", "out_trajectory", "out_rows",
-                  "report", "progress"});
+                 {"surface",          "segment_length", "overlap",        "curvature_radius", "model",
+                  "projection_fit",   "neighbourhood",  "stability",      "max_distance",     "coarse_max_distance",
+                  "scan_voxel",       "no_joint",       "joint_weight",   "joint_damping",    "max_iterations",
+                  "min_edge_points",  "edge_radius",    "max_edge_gap",   "outlier_ratio",    "max_offset",
+                  "normal_smoothing", "normals",        "truth",          "out_trajectory",   "out_rows",
+                  "report",           "progress",       "cad_deflection", "cad_angle_deg",    "cad_save_mesh"});
   const auto take = [&kw](const char* name) {
     return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
   };
@@ -351,6 +355,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   options.truth_path = path_of(take("truth"));
   options.out_trajectory_path = path_of(take("out_trajectory"));
   options.out_rows_path = path_of(take("out_rows"));
+  set_cad_options(take("cad_deflection"), take("cad_angle_deg"), take("cad_save_mesh"), options.cad);
   const std::string report_path = report_path_of(take("report"));
   options.keep_geometry = !report_path.empty();
   SicpCompensationOptions& o = options.compensation;
@@ -373,7 +378,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("joint_weight", o.sicp.joint.weight);
   set("joint_damping", o.sicp.joint.damping);
   set("max_iterations", o.sicp.max_iterations);
-  if (o.sicp.max_iterations < 1 || o.sicp.max_iterations > 1000) throw Error("--max-iterations: not in [1, 1000]");
+  if (o.sicp.max_iterations < 1 || o.sicp.max_iterations > 1000) throw Error("max_iterations: not in [1, 1000]");
   set("min_edge_points", o.checks.min_edge_points);
   set("edge_radius", o.checks.edge_radius_mm);
   set("max_edge_gap", o.checks.max_edge_gap_mm);
@@ -382,9 +387,9 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("normal_smoothing", o.normals.smooth_mm);
   const Progress progress(take("progress"));
   options.progress = progress.function();
-  CallFiles files({options.contour_path, options.scan_path, options.trajectory_path, options.surface_path,
-                   options.truth_path},
-                  {options.out_trajectory_path, options.out_rows_path, report_path});
+  CallFiles files(
+      {options.contour_path, options.scan_path, options.trajectory_path, options.surface_path, options.truth_path},
+      {options.out_trajectory_path, options.out_rows_path, report_path, options.cad.save_mesh_path});
   SicpJobResult result = released(progress, [&] { return run_sicp(options); });
   if (!report_path.empty()) write_report(report_path, sicp_report(options, result));
   files.commit();
@@ -412,12 +417,11 @@ void bind_toolpath_jobs(py::module_& m) {
         arg("out") = py::none(), arg("report") = py::none());
   const ProfileRequest profile;
   m.def("profile", &job_profile, arg("edge"), arg("features"), py::kw_only(), arg("model") = profile.model,
-        arg("web_normal") = py::none(), arg("web_plane") = profile.web_plane,
-        arg("second_edge") = py::none(), arg("web_width") = profile.web_width_mm,
-        arg("direction") = profile.direction, arg("knot_spacing") = profile.knot_spacing_mm,
-        arg("outlier_sigma") = profile.outlier_sigma, arg("chord_tolerance") = profile.chord_tolerance_mm,
-        arg("max_gap") = profile.max_gap_mm, arg("noise") = profile.noise_mm,
-        arg("out") = py::none(), arg("report") = py::none());
+        arg("web_normal") = py::none(), arg("web_plane") = profile.web_plane, arg("second_edge") = py::none(),
+        arg("web_width") = profile.web_width_mm, arg("direction") = profile.direction,
+        arg("knot_spacing") = profile.knot_spacing_mm, arg("outlier_sigma") = profile.outlier_sigma,
+        arg("chord_tolerance") = profile.chord_tolerance_mm, arg("max_gap") = profile.max_gap_mm,
+        arg("noise") = profile.noise_mm, arg("out") = py::none(), arg("report") = py::none());
   // Keyword arguments as the CLI's flags (tube_joint_json.h's TubeJointRequest holds their defaults); see
   // conform.tube_joint in __init__.py for the list.
   m.def("tube_joint", &job_tube_joint, arg("leg"), arg("stub"));

@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 import subprocess
 
 import pytest
@@ -20,6 +21,11 @@ def cli(*args, check=True):
     if check and done.returncode != 0:
         raise AssertionError(f"conform {' '.join(map(str, args))}: exit {done.returncode}: {done.stderr}")
     return done.returncode, done.stdout, done.stderr
+
+
+def as_python(message):
+    """A CLI message as the binding words it (python/src/inputs.h, for_python): --flag-name as flag_name."""
+    return re.sub(r"(?<![^\s('\"])--([a-z][a-z0-9]*(?:-[a-z0-9]+)*)", lambda m: m.group(1).replace("-", "_"), message)
 
 
 def cli_json(*args):

@@ -52,7 +52,7 @@ def test_fit_cylinder_points_choice_matches_cli(tubes):
         assert code in (0, 1)
         r = conform.fit_cylinder(tubes["scan"], seed=2, points=points, surface_samples=5000)
         assert r.to_dict() == json.loads(out), points
-    with pytest.raises(conform.Error, match="--points"):
+    with pytest.raises(conform.Error, match="points"):
         conform.fit_cylinder(tubes["scan"], points="faces")
 
 
