@@ -104,8 +104,8 @@ class WeldLayersCommand : public Command {
                 d.side_from_data ? "from the data" : "given");
     std::printf("craters       %zu\n", d.regions.size());
     for (const DamageRegion& r : d.regions) {
-      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s", r.id, r.max_depth_mm,
-                  r.deepest.x(), r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
+      std::printf("  %-3d         %.2f mm deep at (%.1f, %.1f, %.1f), %.1f mm^2%s", r.id, r.max_depth_mm, r.deepest.x(),
+                  r.deepest.y(), r.deepest.z(), r.area_mm2, r.at_border ? ", at the border" : "");
       const std::size_t i = static_cast<std::size_t>(r.id - 1);
       if (i < w.crater_coverage_pct.size()) std::printf(", layer 1 covers %.1f %%", w.crater_coverage_pct[i]);
       std::printf("\n");

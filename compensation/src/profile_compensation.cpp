@@ -269,7 +269,8 @@ void warn_per_feature(const ProfileCompensationOptions& options, ProfileCompensa
       options.gap_warning_mm > 0.0 ? options.gap_warning_mm : std::max(20.0, 4.0 * points.median_spacing_mm);
   std::vector<std::pair<double, double>> gaps;
   for (std::size_t i = 1; i < points.along_mm.size(); ++i) {
-    if (points.along_mm[i] - points.along_mm[i - 1] > limit) gaps.emplace_back(points.along_mm[i - 1], points.along_mm[i]);
+    if (points.along_mm[i] - points.along_mm[i - 1] > limit)
+      gaps.emplace_back(points.along_mm[i - 1], points.along_mm[i]);
   }
   const double per_deg = std::sin(kPi / 180.0);
   std::size_t twisted = 0;
@@ -286,18 +287,19 @@ void warn_per_feature(const ProfileCompensationOptions& options, ProfileCompensa
     for (const auto& [a, b] : gaps) {
       if (b < ty_min || a > ty_max) continue;
       f.gap_mm = std::max(f.gap_mm, b - a);
-      const std::string text = "feature " + f.id + " (Ty " + format_fixed(ty_min, 1) + " to " + format_fixed(ty_max, 1) +
-                               " mm) lies over a stretch of edge without readings (Ty " + format_fixed(a, 1) + " to " +
-                               format_fixed(b, 1) + " mm, " + format_fixed(b - a, 1) +
+      const std::string text = "feature " + f.id + " (Ty " + format_fixed(ty_min, 1) + " to " +
+                               format_fixed(ty_max, 1) + " mm) lies over a stretch of edge without readings (Ty " +
+                               format_fixed(a, 1) + " to " + format_fixed(b, 1) + " mm, " + format_fixed(b - a, 1) +
                                " mm): its position there is interpolated; a kink or bend within it is not seen";
       f.warnings.push_back(text);
       r->warnings.push_back(text);
     }
     if (!r->local_web && tx_max > 0.0) {
       f.twist_mm_per_deg = tx_max * per_deg;
-      f.warnings.push_back("twist is not observed with one edge (give --second-edge): 1 deg of twist about the edge "
-                           "moves feature " + f.id + " by " + format_fixed(f.twist_mm_per_deg, 2) + " mm (Tx up to " +
-                           format_fixed(tx_max, 1) + " mm)");
+      f.warnings.push_back(
+          "twist is not observed with one edge (give --second-edge): 1 deg of twist about the edge "
+          "moves feature " +
+          f.id + " by " + format_fixed(f.twist_mm_per_deg, 2) + " mm (Tx up to " + format_fixed(tx_max, 1) + " mm)");
       ++twisted;
       if (most == nullptr || f.twist_mm_per_deg > most->twist_mm_per_deg) most = &f;
     }

@@ -43,8 +43,9 @@ double median_edge_length(const Mesh& mesh) {
   lengths.reserve(3 * mesh.faces.size());
   for (const Face& f : mesh.faces) {
     for (int k = 0; k < 3; ++k) {
-      lengths.push_back((mesh.vertices[static_cast<std::size_t>(f[k])] -
-                         mesh.vertices[static_cast<std::size_t>(f[(k + 1) % 3])]).norm());
+      lengths.push_back(
+          (mesh.vertices[static_cast<std::size_t>(f[k])] - mesh.vertices[static_cast<std::size_t>(f[(k + 1) % 3])])
+              .norm());
     }
   }
   if (lengths.empty()) return 0.0;

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <cstdio>
 
+#include "cad_inputs.h"
 #include "conform/core/atomic_file.h"
 #include "conform/core/constants.h"
 #include "conform/core/csv.h"
@@ -14,12 +15,11 @@
 #include "conform/core/io.h"
 #include "conform/core/mesh_sampling.h"
 #include "conform/core/mesh_weld.h"
-#include "conform/core/phong_surface.h"
 #include "conform/core/output_set.h"
+#include "conform/core/phong_surface.h"
 #include "conform/core/transform_io.h"
 #include "conform/registration/tube_reference.h"
 #include "conform/toolpath/intersection_graph.h"
-#include "cad_inputs.h"
 
 namespace conform {
 namespace {
@@ -138,9 +138,9 @@ MainCurve intersect_and_select(const Mesh& leg_L, const Mesh& stub_S, const Eige
   const double tolerance[2] = {solution->leg_weld_tolerance_mm, solution->stub_weld_tolerance_mm};
   for (int k = 0; k < 2; ++k) {
     if (welded[k]->merged_vertices == 0) continue;
-    solution->warnings.push_back(std::string(k == 0 ? "leg" : "stub") + " mesh: " +
-                                 std::to_string(welded[k]->merged_vertices) + " vertices welded into others within " +
-                                 format_fixed(tolerance[k], 4) + " mm (" +
+    solution->warnings.push_back(std::string(k == 0 ? "leg" : "stub") +
+                                 " mesh: " + std::to_string(welded[k]->merged_vertices) +
+                                 " vertices welded into others within " + format_fixed(tolerance[k], 4) + " mm (" +
                                  format_fixed(100.0 * options.weld_edge_fraction, 1) + " % of the median edge; " +
                                  std::to_string(welded[k]->dropped_faces) + " faces collapsed)");
   }
@@ -260,8 +260,8 @@ TubeJointSolution solve_tube_joint(const Mesh& leg_L, const Mesh& stub_S, const 
   if (worst != nullptr && 2.0 * worst->tangent_sigma_deg > options.max_direction_error_deg) {
     std::ostringstream what;
     what.precision(3);
-    what << "the seam tangent is not determined within " << options.max_direction_error_deg
-         << " deg at azimuth " << worst->phi_rad * 180.0 / kPi << " deg: the surfaces cross at "
+    what << "the seam tangent is not determined within " << options.max_direction_error_deg << " deg at azimuth "
+         << worst->phi_rad * 180.0 / kPi << " deg: the surfaces cross at "
          << std::asin(std::min(1.0, worst->stub_normal.cross(worst->leg_normal).norm())) * 180.0 / kPi
          << " deg there and the scans' noise leaves +-" << 2.0 * worst->tangent_sigma_deg
          << " deg (2 sigma from the local surface fits' normals, " << worst->stub_normal_sigma_deg << " and "

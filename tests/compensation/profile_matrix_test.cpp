@@ -258,7 +258,6 @@ bool warned(const ProfileFeatureResult& f, const std::string& what) {
   return false;
 }
 
-
 // Every feature off by more than the bound has a warning; the ones without are within it.
 void expect_honest(const ProfileScan& scan, const ProfileCompensationResult& r, double noise_mm, const char* name) {
   const double bound = bound_mm(noise_mm);

@@ -79,9 +79,9 @@ TEST(DamageMap, OffsetAndTiltAreMeasured) {
 // (~20 % of the nodes) and the lip covers more of the grid than it does. The plane comes from the undamaged corners.
 TEST(DamageMap, BiasFromTheUndamagedSurfaceOnlyWhenTheLipCoversMostOfTheGrid) {
   ErodedOptions o = blade(0.01);
-  o.length_mm = 40.0, o.width_mm = 40.0, o.rows = 41, o.cols = 41;  // 1 mm grid
+  o.length_mm = 40.0, o.width_mm = 40.0, o.rows = 41, o.cols = 41;        // 1 mm grid
   o.chord_radius_mm = 1e6, o.span_radius_mm = 1e6, o.twist_per_mm = 0.0;  // flat
-  o.craters = {Crater{0.0, 0.0, 10.0, 3.0, 0.0, 0.4, 10.0}};  // lip out to 20 mm: the grid's border
+  o.craters = {Crater{0.0, 0.0, 10.0, 3.0, 0.0, 0.4, 10.0}};              // lip out to 20 mm: the grid's border
   DamageOptions given;
   given.outward_side = 1;
   Networks n = networks(o);

@@ -1,9 +1,9 @@
 // Tool directions against analytic ground truth: undeformed cylinders (generate_tube_joint with noise only), where
 // the stub's inner normal at p is radial about z_S and the leg's radial about z_L. The stub normal, the leg normal,
 // the seam tangent (Eq. 3), the dihedral angle between the surfaces and the cutting and welding directions (Eq. 9-11
-// on the true frames) at every path point are compared with the truth at that point, and the point with the true seam. Each joint either meets the bars (directions within 2 deg,
-// the path within 1 mm of the true seam) with ok, or is refused: a wrong answer with ok fails the test, and so does a
-// refusal of a plan that meets the bars.
+// on the true frames) at every path point are compared with the truth at that point, and the point with the true seam.
+// Each joint either meets the bars (directions within 2 deg, the path within 1 mm of the true seam) with ok, or is
+// refused: a wrong answer with ok fails the test, and so does a refusal of a plan that meets the bars.
 
 #include <algorithm>
 #include <cmath>
@@ -92,10 +92,11 @@ void run(const Joint& j, const TubeJointSolveOptions& solve_options, int must_pa
       sigma_n = std::max({sigma_n, f.stub_normal_sigma_deg, f.leg_normal_sigma_deg});
     }
     std::printf("  sigma: tangent max %.3f deg, normals max %.3f deg\n", sigma, sigma_n);
-    std::printf("%s seed %u: ok %d, stub n %.2f, leg n %.2f, tangent %.2f, dihedral %.2f, cut %.2f, weld %.2f deg; "
-                "path max %.3f rms %.3f mm; %s\n", j.name, seed, int(s.ok), e.stub_normal_deg, e.leg_normal_deg,
-                e.tangent_deg, e.dihedral_deg, e.cut_deg, e.weld_deg, e.path_max_mm, e.path_rms_mm,
-                s.ok ? "" : s.termination.c_str());
+    std::printf(
+        "%s seed %u: ok %d, stub n %.2f, leg n %.2f, tangent %.2f, dihedral %.2f, cut %.2f, weld %.2f deg; "
+        "path max %.3f rms %.3f mm; %s\n",
+        j.name, seed, int(s.ok), e.stub_normal_deg, e.leg_normal_deg, e.tangent_deg, e.dihedral_deg, e.cut_deg,
+        e.weld_deg, e.path_max_mm, e.path_rms_mm, s.ok ? "" : s.termination.c_str());
     const bool meets = !s.frames.empty() && e.worst_deg() <= 2.0 && e.path_max_mm <= 1.0;
     if (s.ok) {
       EXPECT_TRUE(meets) << j.name << " seed " << seed << ": ok, but directions off by " << e.worst_deg()

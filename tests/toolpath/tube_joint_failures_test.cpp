@@ -173,16 +173,19 @@ TEST(TubeJointRobustnessMatrix, UnweldedScannerMeshesAreWeldedWithinAFractionOfT
       EXPECT_EQ(open.check.condition, "1a") << open.termination;
       const TubeJointSolution s = solve(leg, stub, T_S_L);
       ASSERT_TRUE(s.ok) << s.termination;
-      EXPECT_EQ(s.leg_welded_vertices + s.stub_welded_vertices,
-                (leg.vertices.size() - scans.leg_L.vertices.size()) + (stub.vertices.size() - scans.stub_S.vertices.size()));
+      EXPECT_EQ(
+          s.leg_welded_vertices + s.stub_welded_vertices,
+          (leg.vertices.size() - scans.leg_L.vertices.size()) + (stub.vertices.size() - scans.stub_S.vertices.size()));
       EXPECT_NEAR(s.leg_weld_tolerance_mm, 0.01 * edge, 0.5 * 0.01 * edge);
       bool said = false;
       for (const std::string& w : s.warnings) said = said || w.find("welded into others") != std::string::npos;
       EXPECT_TRUE(said);
       ASSERT_EQ(s.frames.size(), reference.frames.size());
       double worst = 0.0;
-      for (std::size_t i = 0; i < s.frames.size(); ++i) worst = std::max(worst, (s.frames[i].point - reference.frames[i].point).norm());
-      EXPECT_LT(worst, 2.0 * offset + 1e-6);  // the kept vertices are the first of each pair: the seam moves by < offset
+      for (std::size_t i = 0; i < s.frames.size(); ++i)
+        worst = std::max(worst, (s.frames[i].point - reference.frames[i].point).norm());
+      EXPECT_LT(worst,
+                2.0 * offset + 1e-6);  // the kept vertices are the first of each pair: the seam moves by < offset
     }
   }
 }

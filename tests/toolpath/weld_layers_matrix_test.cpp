@@ -299,7 +299,8 @@ Bars measure_bars(const Case& c, const WeldLayerResult& r) {
   }
   bars.coverage_pct = damaged > 0 ? 100.0 * double(covered) / double(damaged) : 0.0;
   for (std::size_t i = 0; i < own.size(); ++i) {
-    if (own[i] > 0) bars.crater_pct_min = std::min(bars.crater_pct_min, 100.0 * double(own_covered[i]) / double(own[i]));
+    if (own[i] > 0)
+      bars.crater_pct_min = std::min(bars.crater_pct_min, 100.0 * double(own_covered[i]) / double(own[i]));
   }
   return bars;
 }
@@ -347,7 +348,8 @@ TEST(WeldLayersMatrix, StandoffsZeroToTenMillimetres) {
 
 // Coverage is counted with the stated bead width (default the spacing) and per crater: the three-crater blade of the
 // docs, whose smallest crater (0.95 mm deep) has rim slivers between path ends. The reported figures must not exceed
-// the truth's (before, beads 2g wide counted 91 % where 63-68 % were covered), and a crater below the minimum is exit 1.
+// the truth's (before, beads 2g wide counted 91 % where 63-68 % were covered), and a crater below the minimum is
+// exit 1.
 TEST(WeldLayersMatrix, CoverageWithTheStatedBeadWidthPerCrater) {
   Case c = base_case(0.01);
   c.blade.craters = {Crater{0.0, 0.0, 15.0, 2.0}, Crater{35.0, 10.0, 8.0, 1.0}, Crater{55.0, -30.0, 10.0, 1.5}};

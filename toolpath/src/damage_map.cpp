@@ -73,7 +73,8 @@ bool fit_plane(const std::vector<Eigen::Vector3d>& points, const std::vector<dou
   std::size_t n = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!in[i]) continue;
-    const Eigen::Vector3d x(1.0, (points[i] - plane->centre).dot(plane->e1), (points[i] - plane->centre).dot(plane->e2));
+    const Eigen::Vector3d x(1.0, (points[i] - plane->centre).dot(plane->e1),
+                            (points[i] - plane->centre).dot(plane->e2));
     A += x * x.transpose();
     rhs += x * d[i];
     ++n;
@@ -93,7 +94,8 @@ double residual_mode(const std::vector<double>& residual, double bin) {
   const int bins = std::min(static_cast<int>((*hi - *lo) / bin) + 1, 100000);
   const double width = std::max(bin, (*hi - *lo) / bins);
   std::vector<std::size_t> count(static_cast<std::size_t>(bins) + 2, 0);
-  for (double x : residual) ++count[static_cast<std::size_t>(std::min(static_cast<int>((x - *lo) / width), bins - 1)) + 1];
+  for (double x : residual)
+    ++count[static_cast<std::size_t>(std::min(static_cast<int>((x - *lo) / width), bins - 1)) + 1];
   std::size_t best = 1, best_count = 0;
   for (std::size_t k = 1; k + 1 < count.size(); ++k) {
     const std::size_t c = count[k - 1] + 2 * count[k] + count[k + 1];
@@ -114,8 +116,8 @@ double residual_mode(const std::vector<double>& residual, double bin) {
 // at least `margin` nodes away from every feature (a node beyond `feature` from the plane: a crater, lip or bump). So
 // raised material and the foot of a crater's slope stay out of it however much of the grid they cover, as long as
 // the undamaged surface is the most common level.
-Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistances& s, int rows, int cols,
-                 double band, double feature, int margin) {
+Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistances& s, int rows, int cols, double band,
+                 double feature, int margin) {
   Plane plane;
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();
   std::size_t n = 0;
@@ -160,10 +162,12 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
     if (!fit_plane(points, s.d, in, &plane)) return before;
     if (limit == band && std::abs(plane.a - before.a) < 1e-3 * band && (plane.b - before.b).norm() < 1e-6) break;
   }
-  // Away from the features: dilate them by `margin` nodes (a square, rows then columns) and fit on the rest of the band.
+  // Away from the features: dilate them by `margin` nodes (a square, rows then columns) and fit on the rest of the
+  // band.
   auto at = [&](int r, int c) { return static_cast<std::size_t>(r * cols + c); };
   std::vector<char> near(points.size(), 0), along_rows(points.size(), 0);
-  for (std::size_t i = 0; i < points.size(); ++i) near[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i])) > feature;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    near[i] = s.valid[i] && std::abs(s.d[i] - plane.at(points[i])) > feature;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       for (int k = std::max(0, c - margin); k <= std::min(cols - 1, c + margin) && !along_rows[at(r, c)]; ++k) {
@@ -176,7 +180,8 @@ Plane bias_plane(const std::vector<Eigen::Vector3d>& points, const SignedDistanc
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       bool touched = false;
-      for (int k = std::max(0, r - margin); k <= std::min(rows - 1, r + margin) && !touched; ++k) touched = along_rows[at(k, c)];
+      for (int k = std::max(0, r - margin); k <= std::min(rows - 1, r + margin) && !touched; ++k)
+        touched = along_rows[at(k, c)];
       quiet[at(r, c)] = quiet[at(r, c)] && !touched;
       quiet_nodes += quiet[at(r, c)];
     }

@@ -106,8 +106,8 @@ int sized_normal_count(double noise_mm, double edge_mm, const JointGeometryOptio
   if (options.k_normals > 0) return options.k_normals;
   const double theta = options.target_normal_deg * kPi / 180.0;
   const double n = edge_mm > 0.0 ? 3.8 * noise_mm / (edge_mm * theta) : 0.0;
-  return static_cast<int>(std::clamp(std::ceil(n), double(JointGeometryOptions::kMinNormals),
-                                     double(JointGeometryOptions::kMaxNormals)));
+  return static_cast<int>(
+      std::clamp(std::ceil(n), double(JointGeometryOptions::kMinNormals), double(JointGeometryOptions::kMaxNormals)));
 }
 
 std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const std::vector<Eigen::Vector3d>& points,
@@ -119,7 +119,8 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
   // The neighbourhood of each mesh: given, or sized to its noise and edges near the path.
   int k_stub = options.k_normals, k_leg = options.k_normals;
   if (options.k_normals == 0) {
-    const int probe = static_cast<int>(std::min<std::size_t>(40, std::min(stub_S.vertices.size(), leg_S.vertices.size())));
+    const int probe =
+        static_cast<int>(std::min<std::size_t>(40, std::min(stub_S.vertices.size(), leg_S.vertices.size())));
     if (probe < 6) throw Error("joint geometry: a mesh has fewer than 6 vertices");
     const ScanQuality qs = estimate_scan_quality(stub_S, points, probe, 96);
     const ScanQuality ql = estimate_scan_quality(leg_S, points, probe, 96);
@@ -128,10 +129,9 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
   }
   k_stub = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k_stub), stub_S.vertices.size()));
   k_leg = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k_leg), leg_S.vertices.size()));
-  if (k_stub < 3 || k_leg < 3 || (options.k_normals > 0 && (stub_S.vertices.size() < static_cast<std::size_t>(
-                                                                 options.k_normals) ||
-                                                             leg_S.vertices.size() < static_cast<std::size_t>(
-                                                                 options.k_normals)))) {
+  if (k_stub < 3 || k_leg < 3 ||
+      (options.k_normals > 0 && (stub_S.vertices.size() < static_cast<std::size_t>(options.k_normals) ||
+                                 leg_S.vertices.size() < static_cast<std::size_t>(options.k_normals)))) {
     throw Error("joint geometry: a mesh has fewer vertices than k-normals (" + std::to_string(options.k_normals) + ")");
   }
   const int refine_stub = options.k_refine < 0 ? std::max(k_stub, 6) : options.k_refine;
@@ -170,8 +170,8 @@ std::vector<PathFrame> joint_geometry(const std::vector<double>& phi_rad, const 
       const double ratio = frames[i].tangent_sigma_deg / options.target_tangent_deg;
       if (options.k_normals != 0 || ratio <= 1.0) break;
       auto grown = [&](int k, std::size_t size) {
-        return static_cast<int>(std::min<double>({std::ceil(k * ratio), double(JointGeometryOptions::kMaxNormals),
-                                                  static_cast<double>(size)}));
+        return static_cast<int>(std::min<double>(
+            {std::ceil(k * ratio), double(JointGeometryOptions::kMaxNormals), static_cast<double>(size)}));
       };
       const int ks2 = grown(ks, stub_S.vertices.size()), kl2 = grown(kl, leg_S.vertices.size());
       if (ks2 == ks && kl2 == kl) break;

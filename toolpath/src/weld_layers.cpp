@@ -90,8 +90,8 @@ double overlap_length(const std::vector<const WeldPath*>& layer, double radius) 
       tree.radius(x.cast<float>(), static_cast<float>(radius), index, d2);
       bool other = false;
       for (std::size_t k = 0; k < index.size() && !other; ++k) {
-        other = line[static_cast<std::size_t>(index[k])] != path->line &&
-                std::sqrt(static_cast<double>(d2[k])) < radius;
+        other =
+            line[static_cast<std::size_t>(index[k])] != path->line && std::sqrt(static_cast<double>(d2[k])) < radius;
       }
       if (other) length += piece;
     });
@@ -256,9 +256,10 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
     result->overlap_mm.push_back(overlap);
     result->overlap_mm_max = std::max(result->overlap_mm_max, overlap);
     if (overlap > options.max_overlap_mm) {
-      failures.push_back("layer " + std::to_string(k) + ": " + fixed(overlap, 1) + " mm of its paths lie within half a bead (" +
-                         fixed(0.5 * result->bead_width_mm, 2) + " mm) of another of its paths (beads over beads; " +
-                         "limit " + fixed(options.max_overlap_mm, 1) + " mm)");
+      failures.push_back("layer " + std::to_string(k) + ": " + fixed(overlap, 1) +
+                         " mm of its paths lie within half a bead (" + fixed(0.5 * result->bead_width_mm, 2) +
+                         " mm) of another of its paths (beads over beads; " + "limit " +
+                         fixed(options.max_overlap_mm, 1) + " mm)");
     }
     if (k != 1) continue;
     for (const DamageRegion& region : map.regions) {
@@ -288,8 +289,9 @@ void judge(const BezierNetwork& eroded, const WeldLayerOptions& options,
     result->warnings.push_back(std::to_string(result->open_curves) + " rim pieces end inside the grid (broken rims)");
   }
   if (result->max_paths_reached) {
-    failures.push_back("max paths reached: the plan is partial (the half-step paths did not cross the crater: a bead "
-                       "spacing too small for its size, or paths that turn back in a tight bowl)");
+    failures.push_back(
+        "max paths reached: the plan is partial (the half-step paths did not cross the crater: a bead "
+        "spacing too small for its size, or paths that turn back in a tight bowl)");
   }
   if (result->damage_coverage_pct < options.min_coverage_pct) {
     failures.push_back("layer 1 covers " + fixed(result->damage_coverage_pct, 1) + " % of the damage (minimum " +
@@ -326,7 +328,8 @@ bool WeldLayerOptions::IsValid(std::string* error) const {
   if (!std::isfinite(depth_threshold_mm) || depth_threshold_mm > 1000.0) return fail("depth threshold must be finite");
   if (outward_side < -1 || outward_side > 1) return fail("outward side must be -1, 0 (from the data) or +1");
   if (!(min_coverage_pct >= 0.0 && min_coverage_pct <= 100.0)) return fail("minimum coverage must be in [0, 100] %");
-  if (!(bead_width_mm >= 0.0) || bead_width_mm > 100.0) return fail("bead width must be in [0, 100] mm (0: the spacing)");
+  if (!(bead_width_mm >= 0.0) || bead_width_mm > 100.0)
+    return fail("bead width must be in [0, 100] mm (0: the spacing)");
   if (!(max_overlap_mm >= 0.0) || !std::isfinite(max_overlap_mm)) return fail("max overlap must be >= 0 mm");
   if (!(min_crater_coverage_pct >= 0.0 && min_crater_coverage_pct <= 100.0)) {
     return fail("minimum crater coverage must be in [0, 100] %");

@@ -55,8 +55,8 @@ struct ProfileFeatureResult {
   // What the measurement cannot tell about this feature: it lies over a stretch of edge without readings, or twist is
   // not observed (one edge) and moves it by Tx sin(twist).
   std::vector<std::string> warnings;
-  double gap_mm = 0.0;                       // the longest stretch without readings under it (0: none beyond the limit)
-  double twist_mm_per_deg = 0.0;             // one edge: how far 1 deg of twist moves it (max Tx x sin 1 deg); else 0
+  double gap_mm = 0.0;            // the longest stretch without readings under it (0: none beyond the limit)
+  double twist_mm_per_deg = 0.0;  // one edge: how far 1 deg of twist moves it (max Tx x sin 1 deg); else 0
 };
 
 struct ProfileCompensationResult {

@@ -68,7 +68,7 @@ struct TubeJointSolution {
   // Mesh welding (core/mesh_weld.h) before the intersection.
   std::size_t leg_welded_vertices = 0;
   std::size_t stub_welded_vertices = 0;
-  double leg_weld_tolerance_mm = 0.0;   // weld_edge_fraction x the mesh's median edge length
+  double leg_weld_tolerance_mm = 0.0;  // weld_edge_fraction x the mesh's median edge length
   double stub_weld_tolerance_mm = 0.0;
   // Intersection figures.
   std::size_t segments = 0;          // triangle-pair segments

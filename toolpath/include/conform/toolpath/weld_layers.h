@@ -49,7 +49,7 @@ struct WeldLayerOptions {
                                     // reference's r_u x r_v / the other side
   BiasMode bias = BiasMode::kCheck; // a registration bias: fail (check), subtract (remove) or keep as damage
   double min_coverage_pct = 90.0;   // all the damage covered below this by layer 1: not ok (warning per crater)
-  double min_crater_coverage_pct = 85.0;  // one crater (larger than a bead) covered below this: not ok
+  double min_crater_coverage_pct = 85.0;   // one crater (larger than a bead) covered below this: not ok
   double intersection_tolerance_mm = 0.0;  // 0: dc / 10
   double max_step_mm = 0.0;                // 0: 2 dc
   int smoothing_passes = -1;  // binomial passes over a layer's grid for its curvature (not its points); < 0: enough to
@@ -96,8 +96,8 @@ struct WeldLayerResult {
   double chord_error_mm_max = 0.0;      // over every path step, on the surface its points lie on
   double damage_coverage_pct = 0.0;     // damaged nodes within half a bead width of a layer-1 path
   std::vector<double> crater_coverage_pct;  // per region (by id - 1): the same for its own nodes
-  double bead_width_mm = 0.0;           // the bead width coverage and overlap are counted with
-  std::vector<double> overlap_mm;       // per layer: its path length within half a bead of another of its lines
+  double bead_width_mm = 0.0;               // the bead width coverage and overlap are counted with
+  std::vector<double> overlap_mm;           // per layer: its path length within half a bead of another of its lines
   double overlap_mm_max = 0.0;
   std::vector<double> coverage_pct;     // per layer: its region (remaining depth > t) within half a bead width
   double coverage_pct_min = 0.0;
