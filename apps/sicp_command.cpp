@@ -73,6 +73,9 @@ class SicpCommand : public Command {
                  "that step back along the path, are untrusted, mm");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
+    c.add_option("--max-off-surface", o.checks.max_off_surface,
+                 "A segment with more than this share of its scan points off the surface it was fitted to (beyond 4 "
+                 "robust sigmas: a dent, a fixture) is an outlier (untrusted); stray points are left out of its RMS");
     c.add_option("--max-offset", o.checks.max_offset_mm,
                  "Trajectory rows farther than this from the contour are untrusted, mm");
     c.add_option("--normal-smoothing", o.normals.smooth_mm,

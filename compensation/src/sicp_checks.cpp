@@ -37,10 +37,12 @@ void judge_segments(const SicpResult& r, const SicpCheckOptions& o, double scan_
     const SicpSegmentFit& f = r.segments[k];
     const bool blind = f.neighbourhood_points < o.min_edge_points;
     const bool bare = blind && f.stability_points == 0;
-    const bool outlier = !f.usable || f.rms_mm > o.outlier_ratio * noise;
+    const bool off_surface = f.off_surface_share > o.max_off_surface;
+    const bool outlier = !f.usable || f.rms_mm > o.outlier_ratio * noise || off_surface;
     if (blind) c.blind_segments.push_back(k);
     if (bare) c.bare_segments.push_back(k);
     if (outlier && !blind) c.outlier_segments.push_back(k);
+    if (off_surface && !blind) c.off_surface_segments.push_back(k);
     const double fit = std::min(1.0, 2.0 * noise / std::max(f.rms_mm, 1e-9));
     c.segment_confidence.push_back(bare || (outlier && !blind) ? 0.0 : fit);
   }
@@ -231,6 +233,13 @@ void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c)
                          format_fixed(o.outlier_ratio, 1) + " x the noise " + format_fixed(c.noise_mm, 4) +
                          " mm; segments " + list(c.outlier_segments) +
                          "): check the scan there (spurious points, fixtures) or the nominal surface");
+  if (!c.off_surface_segments.empty())
+    c.warnings.push_back(std::to_string(c.off_surface_segments.size()) + " segments have more than " +
+                         format_fixed(100.0 * o.max_off_surface, 0) +
+                         "% of their scan points off the surface they were fitted to (segments " +
+                         list(c.off_surface_segments) +
+                         "): a local shape change there (a dent, a bulge, a fixture) that a rigid segment cannot "
+                         "follow; check the part there");
   if (c.far_rows > 0)
     c.warnings.push_back(std::to_string(c.far_rows) + " trajectory rows lie more than " +
                          format_fixed(o.max_offset_mm, 1) +
@@ -256,6 +265,8 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
     why = "largest offset of the path from the scan's edge must be > 0 mm";
   else if (!std::isfinite(edge_window_mm) || edge_window_mm <= 0.0)
     why = "edge window must be > 0 mm";
+  else if (!std::isfinite(max_off_surface) || max_off_surface <= 0.0 || max_off_surface > 1.0)
+    why = "largest share of a segment's points off the surface must be in (0, 1]";
   else if (!std::isfinite(max_row_step_mm) || max_row_step_mm <= 0.0)
     why = "largest step of the correction between rows must be > 0 mm";
   if (why == nullptr) return true;

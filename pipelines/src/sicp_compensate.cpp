@@ -20,16 +20,14 @@ void projection_residuals(const ProjectionModel& model, const IcpReference& nomi
                           SicpResult& registration) {
   const Eigen::Isometry3d T_nominal_scan = model.T_scan_nominal.inverse();
   for (std::size_t k = 0; k < registration.segments.size() && k < registration.segment_scan.size(); ++k) {
-    double sum = 0.0;
-    std::size_t n = 0;
+    std::vector<double> d;
     for (const Eigen::Vector3d& q : registration.segment_scan[k]) {
       const ReferencePoint c = closest_on_reference(nominal, T_nominal_scan * q, max_distance_mm);
-      if (!c.found) continue;
-      const double d = (q - model.map_point(c.point)).dot(model.map_normal(c.point, c.normal));
-      sum += d * d;
-      ++n;
+      if (c.found) d.push_back((q - model.map_point(c.point)).dot(model.map_normal(c.point, c.normal)));
     }
-    registration.segments[k].rms_mm = n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+    const SicpResiduals r = sicp_residuals(std::move(d));
+    registration.segments[k].rms_mm = r.rms_mm;
+    registration.segments[k].off_surface_share = r.off_surface_share;
   }
 }
 

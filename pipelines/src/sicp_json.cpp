@@ -44,6 +44,7 @@ nlohmann::json segments_json(const SicpJobResult& r) {
                         {"stability_points", f.stability_points},
                         {"icp_iterations", f.icp.iterations},
                         {"rms_mm", f.rms_mm},
+                        {"off_surface_share", f.off_surface_share},
                         {"converged", f.converged},
                         {"usable", f.usable},
                         {"confidence", k < c.check.segment_confidence.size() ? c.check.segment_confidence[k] : 0.0}});
@@ -89,6 +90,7 @@ nlohmann::json sicp_json(const SicpJobResult& r) {
                         {"noise_mm", c.check.noise_mm},
                         {"blind_segments", c.check.blind_segments},
                         {"outlier_segments", c.check.outlier_segments},
+                        {"off_surface_segments", c.check.off_surface_segments},
                         {"untrusted_rows", c.check.untrusted_rows},
                         {"far_rows", c.check.far_rows},
                         {"unmeasured_rows", c.check.unmeasured_rows},

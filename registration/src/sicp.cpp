@@ -44,25 +44,28 @@ bool lexicographic(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
 }
 
-// RMS of the pairs of T_nominal_scan * points with the nominal surface within max_distance; 0 without pairs. The
-// points hung below the scan's edge (sorted, lexicographic) are left out: the residuals judged are the scan's own.
-double pair_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T_nominal_scan,
-                const IcpReference& nominal, double max_distance_mm, const std::vector<Eigen::Vector3d>& hung,
-                double* sum_sq, std::size_t* count) {
-  double sum = 0.0;
-  std::size_t n = 0;
+// The residuals of the pairs of T_nominal_scan * points with the nominal surface within max_distance, judged by
+// sicp_residuals (also into the running sums of the overall RMS). The points hung below the scan's edge (sorted,
+// lexicographic) are left out: the residuals judged are the scan's own.
+SicpResiduals pair_residuals(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T_nominal_scan,
+                             const IcpReference& nominal, double max_distance_mm,
+                             const std::vector<Eigen::Vector3d>& hung, double* sum_sq, std::size_t* count) {
+  std::vector<double> d;
   for (const Eigen::Vector3d& p : points) {
     if (std::binary_search(hung.begin(), hung.end(), p, lexicographic)) continue;
     const Eigen::Vector3d x = T_nominal_scan * p;
     const ReferencePoint r = closest_on_reference(nominal, x, max_distance_mm);
-    if (!r.found) continue;
-    const double d = r.normal.dot(x - r.point);
-    sum += d * d;
-    ++n;
+    if (r.found) d.push_back(r.normal.dot(x - r.point));
   }
-  *sum_sq += sum;
-  *count += n;
-  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+  const SicpResiduals residuals = sicp_residuals(std::move(d));
+  *sum_sq += residuals.sum_sq;
+  *count += residuals.count;
+  return residuals;
+}
+
+void set_residuals(const SicpResiduals& r, SicpSegmentFit& f) {
+  f.rms_mm = r.rms_mm;
+  f.off_surface_share = r.off_surface_share;
 }
 
 // The segment ICPs, in parallel (each is independent, so the result does not depend on the thread count).
@@ -190,8 +193,9 @@ void final_residuals(const detail::SicpSelection& selection, const IcpReference&
     SicpSegmentFit& f = result.segments[k];
     if (surface) {
       f.T_scan_nominal = transforms[k].inverse();
-      f.rms_mm = pair_rms(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, hung, &sum_sq,
-                          &count);
+      set_residuals(pair_residuals(selection.segment_points[k], transforms[k], reference, options.max_distance_mm, hung,
+                                   &sum_sq, &count),
+                    f);
     } else {
       f.T_scan_nominal = transforms[k];
       f.rms_mm = f.icp.rms_mm;
@@ -220,12 +224,38 @@ void rigid_segments(const detail::ContourLocator& locator, const std::vector<Eig
     f.stability_points = selection.segment_points[k].size() - f.neighbourhood_points;
     f.converged = result.coarse.converged;
     f.usable = icp_usable(result.coarse);
-    f.rms_mm = pair_rms(selection.segment_points[k], T, reference, options.max_distance_mm, hung, &sum_sq, &count);
+    set_residuals(
+        pair_residuals(selection.segment_points[k], T, reference, options.max_distance_mm, hung, &sum_sq, &count), f);
   }
   result.segment_scan = selection.segment_points;
 }
 
 }  // namespace
+
+SicpResiduals sicp_residuals(std::vector<double> d) {
+  SicpResiduals r;
+  if (d.empty()) return r;
+  const auto middle = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double centre = middle(d);
+  std::vector<double> spread;
+  for (double x : d) spread.push_back(std::abs(x - centre));
+  const double cut = 4.0 * 1.4826 * middle(spread);
+  std::size_t off = 0;
+  for (double x : d) {
+    if (std::abs(x - centre) > cut) {
+      ++off;
+      continue;
+    }
+    r.sum_sq += x * x;
+    ++r.count;
+  }
+  r.rms_mm = r.count > 0 ? std::sqrt(r.sum_sq / static_cast<double>(r.count)) : 0.0;
+  r.off_surface_share = static_cast<double>(off) / static_cast<double>(d.size());
+  return r;
+}
 
 bool icp_usable(const IcpResult& r) { return r.converged || r.termination == IcpTermination::kMaxIterations; }
 

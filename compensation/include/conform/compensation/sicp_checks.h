@@ -34,6 +34,9 @@ namespace conform {
 struct SicpCheckOptions {
   std::size_t min_edge_points = 10;  // edge (neighbourhood) scan points a segment needs to measure its rows; 0: any
   double outlier_ratio = 4.0;        // a segment's residual RMS above this times the noise is an outlier, > 1
+  // A segment with more than this share of its residuals off the surface (SicpSegmentFit::off_surface_share: beyond
+  // 4 robust sigmas) has met a shape it cannot follow (a dent, a fixture), in (0, 1]; stray points are a percent.
+  double max_off_surface = 0.05;
   double max_offset_mm = 10.0;       // rows farther than this from the nominal contour cannot be trusted, > 0
   double min_confidence = 0.5;       // a row below this confidence makes the path untrusted, in [0, 1]
   double edge_radius_mm = 10.0;      // scan points within this of a compensated row measure the edge there, > 0
@@ -68,6 +71,7 @@ struct SicpCheck {
   std::vector<std::size_t> blind_segments;    // fewer edge points than min_edge_points
   std::vector<std::size_t> bare_segments;     // no stability (surface) points either
   std::vector<std::size_t> outlier_segments;  // residual RMS > outlier_ratio * noise, or ICP not usable
+  std::vector<std::size_t> off_surface_segments;  // more than max_off_surface of the residuals off the surface
   std::vector<double> segment_confidence;     // per segment, [0, 1]
   std::vector<SicpRowReport> rows;            // one per trajectory row
   std::size_t untrusted_rows = 0;             // confidence below min_confidence

@@ -61,7 +61,8 @@ struct SicpSegmentFit {
   IcpResult icp;                         // the segment's own ICP (T_ref_scan there is nominal <- scan or the inverse)
   std::size_t neighbourhood_points = 0;  // in the segment's ICP
   std::size_t stability_points = 0;
-  double rms_mm = 0.0;     // of the segment's pairs at its final transform (after the joint refinement)
+  double rms_mm = 0.0;             // of the segment's pairs at its final transform, those off the surface left out
+  double off_surface_share = 0.0;  // of its pairs, the share off the surface (sicp_residuals)
   bool converged = false;  // its ICP converged
   bool usable = false;     // its ICP ran and is usable (icp_usable); otherwise it starts from the coarse pose
 };
@@ -82,6 +83,18 @@ struct SicpResult {
   std::string termination;            // "converged", or why not
   std::vector<std::string> warnings;  // segments without enough scan data, ...
 };
+
+// A segment's residuals judged robustly: a residual is off the surface when it lies more than 4 robust sigmas
+// (1.4826 x the median absolute deviation from the median) from the median; the RMS is that of the others. Stray
+// points (spikes, dust: a share of a percent) then leave the RMS at the noise; a dent or a fixture that the segment
+// cannot follow shows as a larger share off the surface (compensation/sicp_checks.h judges it).
+struct SicpResiduals {
+  double rms_mm = 0.0;
+  double off_surface_share = 0.0;
+  double sum_sq = 0.0;    // of the residuals on the surface
+  std::size_t count = 0;  // residuals on the surface
+};
+SicpResiduals sicp_residuals(std::vector<double> residuals_mm);
 
 // One rule for every ICP of S-ICP: converged, or stopped at the iteration limit (SicpOptions::max_iterations) with a
 // pose that the residual checks then judge; any other termination (too few pairs, ...) is a failure.
