@@ -16,11 +16,20 @@ constexpr double kDeg = 180.0 / M_PI;
 
 html::Level level_of(AlignTrust trust) {
   switch (trust) {
-    case AlignTrust::kYes: return html::Level::kOk;
-    case AlignTrust::kCheck: return html::Level::kCheck;
-    case AlignTrust::kNo: return html::Level::kFail;
+    case AlignTrust::kYes:
+      return html::Level::kOk;
+    case AlignTrust::kCheck:
+      return html::Level::kCheck;
+    case AlignTrust::kNo:
+      return html::Level::kFail;
   }
   return html::Level::kFail;
+}
+
+std::string html_fraction(double share) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", share);
+  return text;
 }
 
 html::Table fit_table(const AlignResult& r) {
@@ -32,12 +41,16 @@ html::Table fit_table(const AlignResult& r) {
   t.rows.push_back({"iterations", html::count(static_cast<std::size_t>(r.icp.iterations), "/iterations")});
   t.rows.push_back({"method", html::Cell(to_string(r.method), "/method")});
   t.rows.push_back({"start", html::Cell(r.start, "/start")});
-  t.rows.push_back({"RMS (mm)", html::number(r.icp.rms_mm, 5, "/rms_mm")});
+  // One figure per concept, named as the verdict names it: the residuals' robust std (what the verdict compares with
+  // the noise) and their RMS over the pairs kept (which a few large residuals inflate) are two figures.
+  t.rows.push_back({"residuals' robust std (mm)", html::number_g(v.fit_noise_mm, 4, "/verdict/fit_noise_mm")});
+  t.rows.push_back({"residuals' RMS over the pairs kept (mm)", html::number(r.icp.rms_mm, 5, "/rms_mm")});
   t.rows.push_back({"inlier fraction", html::number(r.icp.inlier_fraction, 4, "/inlier_fraction")});
-  t.rows.push_back({"fit noise (mm)", html::number_g(v.fit_noise_mm, 4, "/verdict/fit_noise_mm")});
   t.rows.push_back({"scan noise (mm)", html::number_g(v.scan_noise_mm, 4, "/verdict/scan_noise_mm")});
   t.rows.push_back({"noise ratio", html::number(v.noise_ratio, 2, "/verdict/noise_ratio")});
-  t.rows.push_back({"max distance (mm)", html::number_g(r.max_distance_mm, 5, "/max_distance_mm")});
+  t.rows.push_back({"max distance used (mm)", html::number_g(r.max_distance_mm, 5, "/max_distance_mm")});
+  t.rows.push_back({"pose std at the part (mm)", html::number_g(v.pose_std_mm, 4, "/verdict/pose_std_mm")});
+  t.rows.push_back({"asked of it (mm)", html::number_g(v.pose_tolerance_mm, 4, "/verdict/pose_tolerance_mm")});
   t.rows.push_back({"scan points used", html::count(r.scan_points_used, "/scan_points_used")});
   return t;
 }
@@ -57,8 +70,11 @@ html::Table pose_table(const AlignResult& r) {
 
 html::Table std_table(const AlignResult& r) {
   const Vector6d& s = r.icp.degeneracy.std;
-  html::Table t{"Predicted standard deviation of the pose", {"rx (deg)", "ry (deg)", "rz (deg)", "tx (mm)", "ty (mm)", "tz (mm)"}, {}};
-  t.rows.push_back({html::number_g(s(0) * kDeg, 3, "/pose_std/rx_deg"), html::number_g(s(1) * kDeg, 3, "/pose_std/ry_deg"),
+  html::Table t{"Predicted standard deviation of the pose",
+                {"rx (deg)", "ry (deg)", "rz (deg)", "tx (mm)", "ty (mm)", "tz (mm)"},
+                {}};
+  t.rows.push_back({html::number_g(s(0) * kDeg, 3, "/pose_std/rx_deg"),
+                    html::number_g(s(1) * kDeg, 3, "/pose_std/ry_deg"),
                     html::number_g(s(2) * kDeg, 3, "/pose_std/rz_deg"), html::number_g(s(3), 3, "/pose_std/tx_mm"),
                     html::number_g(s(4), 3, "/pose_std/ty_mm"), html::number_g(s(5), 3, "/pose_std/tz_mm")});
   return t;
@@ -95,13 +111,23 @@ html::Page align_report(const AlignOptions& options, const AlignResult& r, const
   page.inputs.push_back({options.reference_path, r.reference_faces > 0
                                                      ? std::to_string(r.reference_faces) + " triangles"
                                                      : std::to_string(r.reference_points) + " points (no faces)"});
-  page.options = {{"method", to_string(r.method)},          {"init", to_string(options.init)},
-                  {"max_distance_mm", options.max_distance_mm}, {"overlap", options.overlap},
-                  {"max_iterations", options.max_iterations},   {"free_tolerance_mm", options.free_tolerance_mm},
-                  {"free_tolerance_deg", options.free_tolerance_deg}, {"max_noise_ratio", options.max_noise_ratio},
+  // The values the fit used: a default derived from the data shows what it came to, not the 0 that asked for it.
+  const bool overlap_estimated = options.overlap == 0.0 && r.reference_faces == 0;
+  page.options = {{"method", to_string(r.method)},
+                  {"init", to_string(options.init)},
+                  {"max_distance_mm", r.max_distance_mm},
+                  {"overlap", overlap_estimated ? nlohmann::json("estimated: " + html_fraction(r.icp.inlier_fraction))
+                                                : nlohmann::json(options.overlap > 0.0 ? options.overlap : 1.0)},
+                  {"max_iterations", options.max_iterations},
+                  {"free_tolerance_mm", options.free_tolerance_mm},
+                  {"free_tolerance_deg", options.free_tolerance_deg},
+                  {"pose_tolerance_mm", r.verdict.pose_tolerance_mm},
+                  {"tolerance_mm", options.tolerance_mm},
+                  {"max_noise_ratio", options.max_noise_ratio},
                   {"mm_per_unit", options.mm_per_unit}};
   page.date = date;
-  page.verdict = {level_of(r.verdict.trust), "trust " + std::string(to_string(r.verdict.trust)) + ": " + r.verdict.summary};
+  page.verdict = {level_of(r.verdict.trust),
+                  "trust " + std::string(to_string(r.verdict.trust)) + ": " + r.verdict.summary};
   page.warnings = r.warnings;
   page.warnings.insert(page.warnings.end(), r.verdict.reasons.begin(), r.verdict.reasons.end());
   page.result = json;
@@ -124,7 +150,8 @@ html::Page align_report(const AlignOptions& options, const AlignResult& r, const
     const DeviationStatistics s = deviation_statistics(d.deviation_mm);
     html::add_deviation_view(page, shown, d.deviation_mm, s, r.reference, view);
     page.sections.back().paragraphs.push_back(
-        (d.is_signed() ? "Signed distance to the reference surface" : "Unsigned distance to the nearest reference point") +
+        (d.is_signed() ? "Signed distance to the reference surface"
+                       : "Unsigned distance to the nearest reference point") +
         std::string(" of the scan points shown (") + std::to_string(shown.size()) + " of " +
         std::to_string(r.scan.vertices.size()) + "), at the pose T_ref_scan above.");
   }

@@ -173,11 +173,11 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
   }
   if (options.max_noise_ratio > 0.0 && v.noise_ratio > options.max_noise_ratio) {
-    no.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,
-                        v.noise_ratio, v.expected_noise_mm));
+    no.push_back(format("the residuals' robust std (%.3g mm) is %.1f times the scan's own noise (%.3g mm)",
+                        v.fit_noise_mm, v.noise_ratio, v.expected_noise_mm));
   } else if (v.noise_ratio > kConsistentRatio) {
-    check.push_back(format("the residuals (%.3g mm) are %.1f times the scan's own noise (%.3g mm)", v.fit_noise_mm,
-                           v.noise_ratio, v.expected_noise_mm));
+    check.push_back(format("the residuals' robust std (%.3g mm) is %.1f times the scan's own noise (%.3g mm)",
+                           v.fit_noise_mm, v.noise_ratio, v.expected_noise_mm));
   }
   if (estimated && icp.converged && v.overlap < kMinEstimatedOverlap) {
     no.push_back(format("only %.0f%% of the scan found the reference's surface (the fit's estimated overlap): a "
@@ -246,8 +246,10 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   const Vector6d& s = icp.degeneracy.std;
   const double std_mm = s.tail<3>().maxCoeff(), std_deg = s.head<3>().maxCoeff() * 180.0 / M_PI;
   if (v.trust == AlignTrust::kYes) {
-    v.summary = format("trust the pose: residuals %.3g mm at the scan's noise, predicted std <= %.2g mm, %.2g deg",
-                       v.fit_noise_mm, std_mm, std_deg);
+    v.summary = format(
+        "trust the pose: residuals' robust std %.3g mm at the scan's noise, predicted std <= %.2g mm, "
+        "%.2g deg",
+        v.fit_noise_mm, std_mm, std_deg);
   } else {
     v.summary =
         std::string(v.trust == AlignTrust::kNo ? "do not trust the pose: " : "check the pose: ") + v.reasons.front();
