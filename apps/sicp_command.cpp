@@ -65,6 +65,9 @@ class SicpCommand : public Command {
     c.add_option("--max-edge-gap", o.checks.max_edge_gap_mm,
                  "Longest stretch of path without scan of the edge that is bridged from the measured rows on both "
                  "sides (no corner in it), mm; longer: its rows are untrusted");
+    c.add_option("--max-corner-gap", o.checks.max_corner_gap_mm,
+                 "An unmeasured stretch over a corner is bridged when at most this long with 20 mm measured on both "
+                 "sides, mm; 0: never");
     c.add_option("--max-edge-offset", o.checks.max_edge_offset_mm,
                  "Where the scan shows its own edge (no flank scanned), rows farther than this across from it are "
                  "untrusted, mm");

@@ -41,6 +41,9 @@ struct SicpCheckOptions {
   double min_confidence = 0.5;       // a row below this confidence makes the path untrusted, in [0, 1]
   double edge_radius_mm = 10.0;      // scan points within this of a compensated row measure the edge there, > 0
   double max_edge_gap_mm = 150.0;    // the longest unmeasured stretch of path bridged from its measured ends, >= 0
+  // An unmeasured stretch over a corner is bridged when it is at most this long and both sides are measured for 20 mm
+  // or more next to it (they fix the corner), >= 0 (0: never).
+  double max_corner_gap_mm = 40.0;
   // Where the scan shows its own edge (a scan of the face without the flank: SicpResult::scan_edge), a row whose
   // path lies farther than this across from it (the median over the edge points within edge_window_mm) is not
   // trusted, > 0.
