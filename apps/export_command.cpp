@@ -49,6 +49,15 @@ class ExportCommand : public Command {
     c.add_option("--max-points", options_.max_points,
                  "Most motion points per file before the program is split into parts (krl, rapid, fanuc); 0: the "
                  "format's limit (krl 2000, rapid 2000, fanuc 1000)");
+    c.add_option("--blend-mm", options_.blend_mm,
+                 "Blend through the interior points of a path, mm (krl C_DIS, rapid zone, urscript r, val3 leave and "
+                 "reach; fanuc CNT100; gcode the machine's own); 0: stop at every point")
+        ->check(CLI::Range(0.0, 100.0));
+    c.add_option("--process-on", options_.process_on,
+                 "One line written after the first point of each path is reached (arc on, spindle on, dispenser), "
+                 "in the format's own syntax; empty: none");
+    c.add_option("--process-off", options_.process_off,
+                 "One line written after the last point of each path, before its retract (arc off ...); empty: none");
     c.add_flag("--three-axis", three_axis_, "gcode: positions only (G1 X Y Z), no TRAORI tool vectors");
     c.add_option("--roll-cone-deg", roll_cone_deg_,
                  "Keep the tool x axis within this angle of --preferred-x (turning about z) to avoid wrist flips, "

@@ -359,5 +359,80 @@ TEST(RobotProgram, AFileNameCannotEndAComment) {
   EXPECT_EQ(krl.find("b;c"), std::string::npos);
 }
 
+// Two paths of five points each, with approach and retract.
+ToolPath two_paths() {
+  const std::vector<ToolFrame> frames = known_frames();
+  ToolPath path;
+  path.job = "test";
+  path.segments.push_back({"a", std::vector<ToolFrame>(frames.begin(), frames.begin() + 5)});
+  path.segments.push_back({"b", std::vector<ToolFrame>(frames.begin() + 5, frames.begin() + 10)});
+  return path;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// The process lines: after the first point of each path is reached (the approach and that point before it) and
+// after its last point, before the retract (every point of the path before it); once per path, in every format
+// that runs a program.
+TEST(RobotProgram, ProcessLinesAfterThePathsFirstPointAndBeforeItsRetract) {
+  ProgramOptions o;
+  o.name = "t";
+  o.process_on = "PROCESS_ON_7";
+  o.process_off = "PROCESS_OFF_7";
+  for (const std::string format : {"krl", "rapid", "urscript", "fanuc", "val3", "gcode"}) {
+    const Program p = write_program(two_paths(), format, o);
+    const std::string& text = p.files[0].text;  // the program (val3: .pgx; points in the .dtx)
+    ASSERT_EQ(count_of(text, "PROCESS_ON_7"), 2u) << format;
+    ASSERT_EQ(count_of(text, "PROCESS_OFF_7"), 2u) << format;
+    std::vector<std::size_t> on, off;
+    for (std::size_t at = text.find("PROCESS_ON_7"); at != std::string::npos; at = text.find("PROCESS_ON_7", at + 1))
+      on.push_back(at);
+    for (std::size_t at = text.find("PROCESS_OFF_7"); at != std::string::npos; at = text.find("PROCESS_OFF_7", at + 1))
+      off.push_back(at);
+    // Motion points written before each line: approach + first point; then + the other 4 points; the second path
+    // after the first path's retract (7 points) the same way.
+    const auto moves_before = [&](std::size_t at) {
+      const std::string head = text.substr(0, at);
+      if (format == "val3") return count_of(head, "movel(");
+      if (format == "fanuc") return count_of(head, "L P[");
+      if (format == "rapid") return count_of(head, "MoveL ");
+      if (format == "gcode") return count_of(head, "G1 X");
+      return parse(format, head).size();
+    };
+    EXPECT_EQ(moves_before(on[0]), 2u) << format;
+    EXPECT_EQ(moves_before(off[0]), 6u) << format;
+    EXPECT_EQ(moves_before(on[1]), 9u) << format;
+    EXPECT_EQ(moves_before(off[1]), 13u) << format;
+  }
+  o.process_on = "ARC_ON\nLIN {X 0}";
+  EXPECT_THROW(write_program(two_paths(), "krl", o), Error);  // one line, no control characters
+}
+
+// Blending on the interior points of each path only (3 of 5 a path), at the stated distance; none with 0.
+TEST(RobotProgram, BlendOnlyThroughTheInteriorPointsOfAPath) {
+  ProgramOptions o;
+  o.name = "t";
+  o.blend_mm = 2.0;
+  EXPECT_EQ(count_of(write_program(two_paths(), "urscript", o).files[0].text, ", r=0.002000)"), 6u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "krl", o).files[0].text, "} C_DIS"), 6u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "krl", o).files[0].text, "$APO.CDIS = 2.000"), 1u);
+  const std::string rapid = write_program(two_paths(), "rapid", o).files[0].text;
+  EXPECT_EQ(count_of(rapid, ", zPath, "), 6u);
+  EXPECT_EQ(count_of(rapid, "zonedata zPath := [FALSE,2.000,2.000,2.000,0.2000,2.000,0.2000]"), 1u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "fanuc", o).files[0].text, "CNT100"), 6u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "val3", o).files[0].text, ", mPath)"), 6u);
+  o.blend_mm = 0.0;
+  EXPECT_EQ(count_of(write_program(two_paths(), "urscript", o).files[0].text, ", r="), 0u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "krl", o).files[0].text, "C_DIS"), 0u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "rapid", o).files[0].text, "zPath"), 0u);
+  EXPECT_EQ(count_of(write_program(two_paths(), "fanuc", o).files[0].text, "CNT"), 0u);
+  o.blend_mm = -1.0;
+  EXPECT_THROW(write_program(two_paths(), "urscript", o), Error);
+}
+
 }  // namespace
 }  // namespace conform

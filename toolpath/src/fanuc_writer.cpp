@@ -29,8 +29,20 @@ std::string frame_number(const std::string& given, const char* what) {
   return given;
 }
 
-std::string program(const std::string& name, const std::string& comment, const std::vector<std::string>& lines,
+// A process line as a TP instruction: " <line> ;" (its own ';' kept).
+std::string tp_line(const std::string& line) { return " " + line + (!line.empty() && line.back() == ';' ? "" : " ;"); }
+
+std::string program(const std::string& name, const std::string& comment, const std::vector<std::string>& given,
                     const std::string& positions) {
+  // A move may carry process lines after it ('\n'-separated): each is numbered as a line of its own.
+  std::vector<std::string> lines;
+  for (const std::string& g : given) {
+    std::size_t start = 0;
+    for (std::size_t end = g.find('\n'); end != std::string::npos; start = end + 1, end = g.find('\n', start)) {
+      lines.push_back(g.substr(start, end - start));
+    }
+    lines.push_back(g.substr(start));
+  }
   std::string text =
       "/PROG  " + upper(name) + "\n/ATTR\nCOMMENT\t\t= \"" + comment + "\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n";
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -57,11 +69,12 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
     const RobotTarget& t = targets[i];
     abc = euler_zyx_deg(t.rotation, i == 0 ? nullptr : &abc);
     const bool path = t.kind == MoveKind::kPath;
-    const bool blend = path && i + 1 < targets.size() && targets[i + 1].kind == MoveKind::kPath;
     const double speed = path ? options.speed_mm_s : options.approach_speed_mm_s;
-    // TP speeds are whole mm/sec, at least 1.
+    // TP speeds are whole mm/sec, at least 1. CNT is a share of the corner, not a distance.
     moves[i] = "L P[" + std::to_string(local) + "] " + num(std::max(1.0, std::round(speed)), 0) + "mm/sec " +
-               (blend ? "CNT100" : "FINE") + " ;";
+               (blends(targets, i, options) ? "CNT100" : "FINE") + " ;";
+    if (starts_path(targets, i) && !options.process_on.empty()) moves[i] += "\n" + tp_line(options.process_on);
+    if (ends_path(targets, i) && !options.process_off.empty()) moves[i] += "\n" + tp_line(options.process_off);
     const Eigen::Vector3d& p = t.position_mm;
     positions[i] = "P[" + std::to_string(local) + "]{\n   GP1:\n\tUF : " + uf + ", UT : " + ut +
                    ",\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = " + num(p.x(), 6) + "  mm,\tY = " + num(p.y(), 6) +

@@ -16,7 +16,8 @@ Program write_gcode(const std::vector<RobotTarget>& targets, const ProgramOption
   if (!options.work_object.empty()) text += options.work_object + "\n";
   text += "G17 G90 G94 G71\n";
   if (options.five_axis) text += "TRAORI\nORIWKS\n";
-  for (const RobotTarget& t : targets) {
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const RobotTarget& t = targets[i];
     const double feed = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) * 60.0;
     text += "G1 X" + num(t.position_mm.x(), 6) + " Y" + num(t.position_mm.y(), 6) + " Z" + num(t.position_mm.z(), 6);
     if (options.five_axis) {
@@ -24,6 +25,8 @@ Program write_gcode(const std::vector<RobotTarget>& targets, const ProgramOption
       text += " A3=" + num(v.x(), 12) + " B3=" + num(v.y(), 12) + " C3=" + num(v.z(), 12);
     }
     text += " F" + num(feed, 3) + "\n";
+    if (starts_path(targets, i) && !options.process_on.empty()) text += options.process_on + "\n";
+    if (ends_path(targets, i) && !options.process_off.empty()) text += options.process_off + "\n";
   }
   if (options.five_axis) text += "TRAFOOF\n";
   text += "M30\n";

@@ -24,10 +24,11 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
     if (i == 0 || targets[i - 1].kind != t.kind) {
       line += speed_line(t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s);
     }
-    const bool blend = t.kind == MoveKind::kPath && i + 1 < targets.size() && targets[i + 1].kind == MoveKind::kPath;
     line += "LIN {X " + num(t.position_mm.x(), 6) + ", Y " + num(t.position_mm.y(), 6) + ", Z " +
             num(t.position_mm.z(), 6) + ", A " + num(abc(0), 9) + ", B " + num(abc(1), 9) + ", C " + num(abc(2), 9) +
-            "}" + (blend ? " C_DIS" : "") + "\n";
+            "}" + (blends(targets, i, options) ? " C_DIS" : "") + "\n";
+    if (starts_path(targets, i) && !options.process_on.empty()) line += options.process_on + "\n";
+    if (ends_path(targets, i) && !options.process_off.empty()) line += options.process_off + "\n";
     moves.push_back(line);
   }
   const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
@@ -36,7 +37,7 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
   std::string main = "&ACCESS RVP\n&REL 1\nDEF " + options.name + "( )\n; " + provenance(options, targets.size()) +
                      "\n; A B C in degrees, Z-Y'-X''\n";
   main += "$TOOL = " + tool_or(options, "TOOL_DATA[1]") + "\n$BASE = " + work_object_or(options, "BASE_DATA[1]") +
-          "\n$ADVANCE = 3\n$APO.CDIS = 0.5\n$ORI_TYPE = #VAR\n";
+          "\n$ADVANCE = 3\n$APO.CDIS = " + num(options.blend_mm, 3) + "\n$ORI_TYPE = #VAR\n";
   if (parts.size() == 1) {
     for (const std::string& m : moves) main += m;
   } else {

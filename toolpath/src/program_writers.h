@@ -24,6 +24,12 @@ std::vector<std::pair<std::size_t, std::size_t>> parts_of(std::size_t count, std
 // `options.tool` or `fallback` when empty (same for the work object).
 std::string tool_or(const ProgramOptions& options, const std::string& fallback);
 std::string work_object_or(const ProgramOptions& options, const std::string& fallback);
+// Whether targets[i] is the first (the last) point of a path: reached exactly, the process line starts after it
+// (stops after it; ProgramOptions::process_on, process_off).
+bool starts_path(const std::vector<RobotTarget>& targets, std::size_t i);
+bool ends_path(const std::vector<RobotTarget>& targets, std::size_t i);
+// Whether the move to targets[i] blends into the next: an interior point of a path, with a blend distance.
+bool blends(const std::vector<RobotTarget>& targets, std::size_t i, const ProgramOptions& options);
 // One line saying where the program came from, for a comment.
 std::string provenance(const ProgramOptions& options, std::size_t targets);
 

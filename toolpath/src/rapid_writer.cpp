@@ -19,6 +19,12 @@ std::string module(const std::string& name, const std::string& body, const std::
                    const ProgramOptions& options) {
   std::string text = "MODULE " + name + "\n  ! " + provenance(options, targets.size()) + "\n";
   text += speeddata("vPath", options.speed_mm_s) + speeddata("vApproach", options.approach_speed_mm_s);
+  if (options.blend_mm > 0.0) {
+    // z1's proportions (RAPID reference manual, "zonedata"), scaled to the blend distance.
+    const double b = options.blend_mm;
+    text += "  LOCAL CONST zonedata zPath := [FALSE," + num(b, 3) + "," + num(b, 3) + "," + num(b, 3) + "," +
+            num(0.1 * b, 4) + "," + num(b, 3) + "," + num(0.1 * b, 4) + "];\n";
+  }
   for (const std::string& t : targets) text += t;
   return text + body + "ENDMODULE\n";
 }
@@ -42,9 +48,10 @@ Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOption
               num(t.position_mm.y(), 6) + "," + num(t.position_mm.z(), 6) + "],[" + num(q(0), 12) + "," +
               num(q(1), 12) + "," + num(q(2), 12) + "," + num(q(3), 12) + "],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n";
     const bool path = t.kind == MoveKind::kPath;
-    const bool blend = path && i + 1 < targets.size() && targets[i + 1].kind == MoveKind::kPath;
-    moves[i] = "    MoveL " + name + ", " + (path ? "vPath" : "vApproach") + ", " + (blend ? "z1" : "fine") + ", " +
-               tool + " \\WObj:=" + wobj + ";\n";
+    moves[i] = "    MoveL " + name + ", " + (path ? "vPath" : "vApproach") + ", " +
+               (blends(targets, i, options) ? "zPath" : "fine") + ", " + tool + " \\WObj:=" + wobj + ";\n";
+    if (starts_path(targets, i) && !options.process_on.empty()) moves[i] += "    " + options.process_on + "\n";
+    if (ends_path(targets, i) && !options.process_off.empty()) moves[i] += "    " + options.process_off + "\n";
   }
   if (parts.size() == 1) {
     std::string body = "  PROC main()\n    ConfL \\Off;\n";

@@ -46,6 +46,12 @@ bool ProgramOptions::IsValid(std::string* error) const {
   }
   if (!name_text(tool) || !name_text(work_object)) why << "tool and work-object names: letters, digits, _ [ ] only; ";
   if (!rigid(T_base_part)) why << "T_base_part is not a rigid transform; ";
+  if (!(std::isfinite(blend_mm) && blend_mm >= 0.0 && blend_mm <= 100.0)) why << "the blend must be in [0, 100] mm; ";
+  for (const std::string* line : {&process_on, &process_off}) {
+    if (std::any_of(line->begin(), line->end(), [](char c) { return std::iscntrl(static_cast<unsigned char>(c)); })) {
+      why << "a process line may not hold a line break or another control character; ";
+    }
+  }
   std::string text = why.str();
   if (text.size() >= 2) text.resize(text.size() - 2);
   if (error != nullptr) *error = text;
@@ -67,6 +73,27 @@ std::string program_extension(const std::string& format) {
   if (format == "csv") return ".csv";
   throw Error("export: unknown format '" + format + "' (krl, rapid, urscript, fanuc, val3, gcode, csv)");
 }
+
+namespace detail {
+
+bool starts_path(const std::vector<RobotTarget>& targets, std::size_t i) {
+  const RobotTarget& t = targets[i];
+  return t.kind == MoveKind::kPath &&
+         (i == 0 || targets[i - 1].kind != MoveKind::kPath || targets[i - 1].segment != t.segment);
+}
+
+bool ends_path(const std::vector<RobotTarget>& targets, std::size_t i) {
+  const RobotTarget& t = targets[i];
+  return t.kind == MoveKind::kPath &&
+         (i + 1 == targets.size() || targets[i + 1].kind != MoveKind::kPath || targets[i + 1].segment != t.segment);
+}
+
+bool blends(const std::vector<RobotTarget>& targets, std::size_t i, const ProgramOptions& options) {
+  return options.blend_mm > 0.0 && targets[i].kind == MoveKind::kPath && !starts_path(targets, i) &&
+         !ends_path(targets, i);
+}
+
+}  // namespace detail
 
 std::vector<RobotTarget> plan_targets(const ToolPath& path, const ProgramOptions& options) {
   std::vector<RobotTarget> targets;

@@ -1,5 +1,6 @@
-// Universal Robots URScript (.script): movel(p[x, y, z, rx, ry, rz], a, v) with positions in metres and the rotation
-// vector (axis times angle, rad) of the tool frame in the base frame (URScript manual, "pose").
+// Universal Robots URScript (.script): movel(p[x, y, z, rx, ry, rz], a, v[, r]) with positions in metres and the
+// rotation vector (axis times angle, rad) of the tool frame in the base frame (URScript manual, "pose"); r, the blend
+// radius in metres, on the interior points of a path (without it the robot stops at every point).
 
 #include <string>
 
@@ -20,7 +21,10 @@ Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOpt
     const double v = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) / 1000.0;
     const Eigen::Vector3d p = t.position_mm / 1000.0;
     text += "  movel(p[" + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " + num(p.z(), 9) + ", " + num(rv.x(), 12) + ", " +
-            num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) + ")\n";
+            num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) +
+            (blends(targets, i, options) ? ", r=" + num(options.blend_mm / 1000.0, 6) : std::string()) + ")\n";
+    if (starts_path(targets, i) && !options.process_on.empty()) text += "  " + options.process_on + "\n";
+    if (ends_path(targets, i) && !options.process_off.empty()) text += "  " + options.process_off + "\n";
   }
   text += "end\n";
   Program program;

@@ -19,8 +19,14 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
       "    <Data name=\"mPath\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
       "      <Value key=\"0\" tvel=\"" +
       num(options.speed_mm_s, 3) +
-      "\" blend=\"joint\" leave=\"0.5\" "
-      "reach=\"0.5\" />\n    </Data>\n";
+      (options.blend_mm > 0.0
+           ? "\" blend=\"joint\" leave=\"" + num(options.blend_mm, 3) + "\" reach=\"" + num(options.blend_mm, 3) + "\""
+           : std::string("\" blend=\"off\"")) +
+      " />\n    </Data>\n";
+  data +=
+      "    <Data name=\"mPathStop\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
+      "      <Value key=\"0\" tvel=\"" +
+      num(options.speed_mm_s, 3) + "\" blend=\"off\" />\n    </Data>\n";
   data +=
       "    <Data name=\"mApproach\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
       "      <Value key=\"0\" tvel=\"" +
@@ -35,8 +41,17 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
     data += "      <Value key=\"" + std::to_string(i) + "\" x=\"" + num(t.position_mm.x(), 6) + "\" y=\"" +
             num(t.position_mm.y(), 6) + "\" z=\"" + num(t.position_mm.z(), 6) + "\" rx=\"" + num(r(0), 9) + "\" ry=\"" +
             num(r(1), 9) + "\" rz=\"" + num(r(2), 9) + "\" fatherId=\"" + frame + "[0]\" />\n";
-    code += "  movel(pPath[" + std::to_string(i) + "], " + tool + ", " +
-            (t.kind == MoveKind::kPath ? "mPath" : "mApproach") + ")\n";
+    // mPath blends; a path's first and last points are reached exactly (mPathStop, mApproach do not blend).
+    const char* const descriptor = blends(targets, i, options) ? "mPath"
+                                   : t.kind == MoveKind::kPath ? "mPathStop"
+                                                               : "mApproach";
+    code += "  movel(pPath[" + std::to_string(i) + "], " + tool + ", " + descriptor + ")\n";
+    // VAL3 queues its moves: a process line waits for the point to be reached.
+    const bool on = starts_path(targets, i) && !options.process_on.empty();
+    const bool off = ends_path(targets, i) && !options.process_off.empty();
+    if (on || off) code += "  waitEndMove()\n";
+    if (on) code += "  " + options.process_on + "\n";
+    if (off) code += "  " + options.process_off + "\n";
   }
   data += "    </Data>\n  </Datas>\n</Database>\n";
   code += "  waitEndMove()\nend\n";

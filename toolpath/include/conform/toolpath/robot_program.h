@@ -33,7 +33,16 @@ struct ProgramOptions {
   // point array), urscript, gcode, csv.
   std::size_t max_points = 0;
   bool five_axis = true;  // gcode: TRAORI with tool vectors; false: 3-axis positions only
-  std::string source;     // written into the header comment (the input file)
+  // Blending through the interior points of a path, mm: the controller may leave each point this far before it and
+  // join the next move (krl $APO.CDIS with C_DIS, rapid a zonedata zPath, urscript movel r=, val3 leave and reach;
+  // fanuc CNT100 and gcode's continuous-path mode take no distance). 0: every point reached exactly (stops). The
+  // first and last points of a path, the approach and the retract are always reached exactly.
+  double blend_mm = 0.5;
+  // One line each, written after the first point of each path is reached and before its retract: arc on / off,
+  // spindle, dispenser (the format's own syntax, as the controller takes it). Empty: none. No control characters.
+  std::string process_on;
+  std::string process_off;
+  std::string source;  // written into the header comment (the input file)
 
   bool IsValid(std::string* error) const;
 };
