@@ -25,14 +25,14 @@ std::string verdict(const std::string& html) {
 
 TEST(JobReportCommand, ExitOneWritesTheReportWithWhy) {
   const test::TempDir dir;
-  // sicp: every row farther from the contour than --max-offset: untrusted, no trajectory, exit 1.
+  // sicp: no segment has the edge points asked (--min-edge-points): every row untrusted, no trajectory, exit 1.
   auto g = test::run(CONFORM_EXE, {"generate", "plate", "--out", dir.file("p.ply"), "--scan-points", "8000",
                                    "--contour-spacing", "2", "--surface-edge", "4", "--quiet"});
   ASSERT_EQ(g.exit_code, 0) << g.err;
-  auto r = test::run(CONFORM_EXE,
-                     {"sicp", "--contour", dir.file("p.contour.csv"), "--scan", dir.file("p.ply"), "--trajectory",
-                      dir.file("p.trajectory.csv"), "--surface", dir.file("p.nominal.ply"), "--max-offset", "0.01",
-                      "--out-trajectory", dir.file("out.csv"), "--quiet", "--report", dir.file("sicp.html")});
+  auto r = test::run(
+      CONFORM_EXE, {"sicp", "--contour", dir.file("p.contour.csv"), "--scan", dir.file("p.ply"), "--trajectory",
+                    dir.file("p.trajectory.csv"), "--surface", dir.file("p.nominal.ply"), "--min-edge-points", "100000",
+                    "--out-trajectory", dir.file("out.csv"), "--quiet", "--report", dir.file("sicp.html")});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(test::read_bytes(dir.file("out.csv")), "");
   EXPECT_EQ(verdict(test::read_bytes(dir.file("sicp.html"))).rfind("fail: not trusted: ", 0), 0u)

@@ -233,10 +233,12 @@ TEST(RobotProgram, ApproachAndRetractAlongMinusZ) {
   EXPECT_LT((t[3].position_mm - Eigen::Vector3d(-25, 10, 0)).norm(), 1e-12);
 }
 
-TEST(RobotAngles, EulerAnglesAreContinuousThroughPlusMinus180) {
-  // A turn about z from 170 to 190 deg and back: A goes on past 180 instead of jumping to -170.
+TEST(RobotAngles, EulerAnglesStayInTheControllersRangeThroughPlusMinus180) {
+  // A turn about z from 170 to 190 deg and back: A stays in (-180, 180] (it steps from 180 to -179), the rotation it
+  // composes moves on smoothly, and so does the quaternion.
   Eigen::Vector3d abc = Eigen::Vector3d::Zero();
   Eigen::Vector4d q = Eigen::Vector4d::Zero();
+  int wrapped = 0;
   for (int i = 0; i <= 40; ++i) {
     const double a = rad(170.0 + (i <= 20 ? i : 40 - i));
     const Eigen::Matrix3d r = Rz(a) * Rx(rad(179.5 + 0.05 * i));
@@ -244,12 +246,18 @@ TEST(RobotAngles, EulerAnglesAreContinuousThroughPlusMinus180) {
     const Eigen::Vector4d q_before = q;
     abc = euler_zyx_deg(r, i == 0 ? nullptr : &abc);
     q = quaternion_wxyz(r, i == 0 ? nullptr : &q);
+    for (int k : {0, 2}) EXPECT_TRUE(abc(k) > -180.0 && abc(k) <= 180.0) << i;
     if (i > 0) {
-      EXPECT_LT((abc - before).cwiseAbs().maxCoeff(), 1.5) << i;
+      for (int k = 0; k < 3; ++k) {
+        const double step = std::abs(abc(k) - before(k));
+        EXPECT_LT(std::min(step, std::abs(step - 360.0)), 1.5) << i;  // smooth but for whole turns
+        wrapped += step > 180.0;
+      }
       EXPECT_LT((q - q_before).norm(), 0.02) << i;
     }
     EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol);
   }
+  EXPECT_GT(wrapped, 0);  // the path does cross +-180
 }
 
 TEST(RobotAngles, GimbalLockKeepsTheFirstAngleAndComposesExactly) {

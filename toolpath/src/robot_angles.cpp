@@ -16,8 +16,12 @@ constexpr double kLock = 1e-12;
 double deg(double rad) { return rad * 180.0 / kPi; }
 double rad(double deg) { return deg * kPi / 180.0; }
 
-// `angle` plus whole turns, closest to `near`.
-double unwrap_deg(double angle, double near) { return angle + 360.0 * std::round((near - angle) / 360.0); }
+// `angle` plus whole turns, in (-180, 180]: the range the controllers take (KRL A and C, FANUC W and R, VAL3 rx and
+// rz); their orientation interpolation is on the rotation, so a step across +-180 is not a turn of the wrist.
+double wrap_deg(double angle) {
+  const double wrapped = angle - 360.0 * std::floor((angle + 180.0) / 360.0);  // [-180, 180)
+  return wrapped == -180.0 ? 180.0 : wrapped;
+}
 
 Eigen::Matrix3d rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 Eigen::Matrix3d ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
@@ -31,12 +35,7 @@ Eigen::Vector3d euler_zyx_deg(const Eigen::Matrix3d& r, const Eigen::Vector3d* p
   double a = cos_b > kLock ? std::atan2(r(1, 0), r(0, 0)) : (previous != nullptr ? rad((*previous)(0)) : 0.0);
   const Eigen::Matrix3d m = ry(b).transpose() * rz(a).transpose() * r;  // = Rx(C)
   const double c = std::atan2(m(2, 1), m(1, 1));
-  Eigen::Vector3d out(deg(a), deg(b), deg(c));
-  if (previous != nullptr) {
-    out(0) = unwrap_deg(out(0), (*previous)(0));
-    out(2) = unwrap_deg(out(2), (*previous)(2));
-  }
-  return out;
+  return Eigen::Vector3d(wrap_deg(deg(a)), deg(b), wrap_deg(deg(c)));
 }
 
 Eigen::Vector3d euler_xyz_deg(const Eigen::Matrix3d& r, const Eigen::Vector3d* previous) {
@@ -45,12 +44,7 @@ Eigen::Vector3d euler_xyz_deg(const Eigen::Matrix3d& r, const Eigen::Vector3d* p
   double a = cos_b > kLock ? std::atan2(-r(1, 2), r(2, 2)) : (previous != nullptr ? rad((*previous)(0)) : 0.0);
   const Eigen::Matrix3d m = ry(b).transpose() * rx(a).transpose() * r;  // = Rz(c)
   const double c = std::atan2(m(1, 0), m(0, 0));
-  Eigen::Vector3d out(deg(a), deg(b), deg(c));
-  if (previous != nullptr) {
-    out(0) = unwrap_deg(out(0), (*previous)(0));
-    out(2) = unwrap_deg(out(2), (*previous)(2));
-  }
-  return out;
+  return Eigen::Vector3d(wrap_deg(deg(a)), deg(b), wrap_deg(deg(c)));
 }
 
 Eigen::Vector4d quaternion_wxyz(const Eigen::Matrix3d& r, const Eigen::Vector4d* previous) {
