@@ -31,7 +31,8 @@ namespace {
 py::tuple job_weld_layers(const py::object& eroded, const py::object& reference, bool reference_from_border,
                           double bead_spacing, double layer_height, double chord_error, double torch_distance,
                           int layers, double depth_threshold, int outward, const std::string& bias, double min_coverage,
-                          double min_crater_coverage, const py::object& out, const py::object& report) {
+                          double min_crater_coverage, double bead_width, double max_overlap, const py::object& out,
+                          const py::object& report) {
   const std::string report_path = report_path_of(report);
   WeldLayersJobOptions options;
   options.eroded_path = path_of(eroded);
@@ -56,6 +57,8 @@ py::tuple job_weld_layers(const py::object& eroded, const py::object& reference,
   options.weld.bias = bias == "remove" ? BiasMode::kRemove : bias == "keep" ? BiasMode::kKeep : BiasMode::kCheck;
   options.weld.min_coverage_pct = min_coverage;
   options.weld.min_crater_coverage_pct = min_crater_coverage;
+  options.weld.bead_width_mm = bead_width;
+  options.weld.max_overlap_mm = max_overlap;
   options.out_path = path_of(out);
   options.keep_geometry = !report_path.empty();
   CallFiles files({options.eroded_path, options.reference_path}, {options.out_path, report_path});
@@ -195,7 +198,8 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
                                       "out_cut",          "out_weld",
                                       "report",           "progress",
                                       "cad_deflection",   "cad_angle_deg",
-                                      "cad_save_mesh"};
+                                      "cad_save_mesh",    "max_direction_error",
+                                      "weld_tolerance"};
   for (const auto& item : kw) {
     const std::string name = py::str(item.first);
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return name == k; }) == std::end(known)) {
@@ -226,6 +230,8 @@ py::tuple job_tube_joint(const py::object& leg, const py::object& stub, const py
   set("weld_standoff", o.solve.tools.weld_standoff_mm);
   set("k_normals", o.solve.geometry.k_normals);
   set("k_refine", o.solve.geometry.k_refine);
+  set("max_direction_error", o.solve.max_direction_error_deg);
+  set("weld_tolerance", o.solve.weld_edge_fraction);
   o.out_path = path_of(take("out_path"));
   o.out_cut = path_of(take("out_cut"));
   o.out_weld = path_of(take("out_weld"));
@@ -333,12 +339,13 @@ py::tuple job_generate_tube(const py::object& out, const py::kwargs& kw) {
 py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::object& trajectory,
                    const py::kwargs& kw) {
   check_keywords("sicp", kw,
-                 {"surface",          "segment_length", "overlap",        "curvature_radius", "model",
-                  "projection_fit",   "neighbourhood",  "stability",      "max_distance",     "coarse_max_distance",
-                  "scan_voxel",       "no_joint",       "joint_weight",   "joint_damping",    "max_iterations",
-                  "min_edge_points",  "edge_radius",    "max_edge_gap",   "outlier_ratio",    "max_offset",
-                  "normal_smoothing", "normals",        "truth",          "out_trajectory",   "out_rows",
-                  "report",           "progress",       "cad_deflection", "cad_angle_deg",    "cad_save_mesh"});
+                 {"surface",          "segment_length",  "overlap",        "curvature_radius", "model",
+                  "projection_fit",   "neighbourhood",   "stability",      "max_distance",     "coarse_max_distance",
+                  "scan_voxel",       "no_joint",        "joint_weight",   "joint_damping",    "max_iterations",
+                  "min_edge_points",  "edge_radius",     "max_edge_gap",   "outlier_ratio",    "max_offset",
+                  "normal_smoothing", "normals",         "truth",          "out_trajectory",   "out_rows",
+                  "report",           "progress",        "cad_deflection", "cad_angle_deg",    "cad_save_mesh",
+                  "max_corner_gap",   "max_edge_offset", "max_row_step",   "max_off_surface"});
   const auto take = [&kw](const char* name) {
     return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
   };
@@ -384,6 +391,10 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("max_edge_gap", o.checks.max_edge_gap_mm);
   set("outlier_ratio", o.checks.outlier_ratio);
   set("max_offset", o.checks.max_offset_mm);
+  set("max_corner_gap", o.checks.max_corner_gap_mm);
+  set("max_edge_offset", o.checks.max_edge_offset_mm);
+  set("max_row_step", o.checks.max_row_step_mm);
+  set("max_off_surface", o.checks.max_off_surface);
   set("normal_smoothing", o.normals.smooth_mm);
   const Progress progress(take("progress"));
   options.progress = progress.function();
@@ -414,7 +425,8 @@ void bind_toolpath_jobs(py::module_& m) {
         arg("torch_distance") = weld.torch_distance_mm, arg("layers") = weld.layers,
         arg("depth_threshold") = weld.depth_threshold_mm, arg("outward") = weld.outward_side, arg("bias") = "check",
         arg("min_coverage") = weld.min_coverage_pct, arg("min_crater_coverage") = weld.min_crater_coverage_pct,
-        arg("out") = py::none(), arg("report") = py::none());
+        arg("bead_width") = weld.bead_width_mm, arg("max_overlap") = weld.max_overlap_mm, arg("out") = py::none(),
+        arg("report") = py::none());
   const ProfileRequest profile;
   m.def("profile", &job_profile, arg("edge"), arg("features"), py::kw_only(), arg("model") = profile.model,
         arg("web_normal") = py::none(), arg("web_plane") = profile.web_plane, arg("second_edge") = py::none(),

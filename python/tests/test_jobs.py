@@ -151,6 +151,11 @@ def test_weld_layers_matches_cli(tmp_path):
     r = conform.weld_layers(eroded, reference_from_border=True, bias="keep", bead_spacing=3, layer_height=1,
                             chord_error=0.05, torch_distance=10)
     assert_same(r.to_dict(), expected)
+    expected = cli_json("weld-layers", "--eroded", eroded, "--reference", tmp_path / "blade.reference.csv", *common,
+                        "--bead-width", 3.6, "--max-overlap", 4)
+    r = conform.weld_layers(eroded, reference=tmp_path / "blade.reference.csv", bead_spacing=3, layer_height=1,
+                            chord_error=0.05, torch_distance=10, bead_width=3.6, max_overlap=4)
+    assert_same(r.to_dict(), expected)
     with pytest.raises(conform.Error, match="reference_from_border"):
         conform.weld_layers(eroded, bead_spacing=3, layer_height=1, chord_error=0.05)
 
@@ -177,7 +182,9 @@ def test_tube_joint_matches_cli(tmp_path):
     joint = ["--pitch-deg", 45, "--offset", 100, "--protrusion", 2014.2135623730949]
     timing = ("intersection_s", "total_s")  # wall-clock seconds, different in every run
     for flags, kwargs in [([], {}), (["--groove-deg", "30,40,50,40", "--wall-thickness", "20,10", "--step-mm", 10],
-                                     {"groove_deg": [30, 40, 50, 40], "wall_thickness": [20, 10], "step_mm": 10})]:
+                                     {"groove_deg": [30, 40, 50, 40], "wall_thickness": [20, 10], "step_mm": 10}),
+                          (["--weld-tolerance", 0.02, "--max-direction-error", 3],
+                           {"weld_tolerance": 0.02, "max_direction_error": 3})]:
         expected = cli_json("tube-joint", "--leg", leg, "--stub", stub, *joint, *flags)
         r = conform.tube_joint(leg, stub, pitch_deg=45, offset=100, protrusion=2014.2135623730949, **kwargs)
         got = r.to_dict()

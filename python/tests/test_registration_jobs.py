@@ -82,6 +82,12 @@ def test_sicp_matches_cli(plate, tmp_path):
     written = np.loadtxt(tmp_path / "py.csv", delimiter=",", skiprows=1)
     np.testing.assert_allclose(written[:, :3], r.points_mm, atol=1e-6)  # the CSV's printed digits
     assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    checks = {"max_corner_gap": 30, "max_edge_offset": 0.6, "max_row_step": 0.3, "max_off_surface": 0.1}
+    flags = [x for k, v in checks.items() for x in ("--" + k.replace("_", "-"), v)]
+    expected = cli_json("sicp", *common, *flags)
+    got = conform.sicp(plate["contour.csv"], plate["ply"], plate["trajectory.csv"], surface=plate["nominal.ply"],
+                       **checks).to_dict()
+    assert_same(got, expected)
 
     flags = ["--model", "projection", "--projection-fit", "spline", "--normals", "scan", "--segment-length", 30,
              "--max-iterations", 20, "--min-edge-points", 5]
