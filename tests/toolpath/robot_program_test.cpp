@@ -90,8 +90,8 @@ const std::string N = "(-?[0-9]+\\.?[0-9]*(?:[eE][-+]?[0-9]+)?)";
 std::vector<Parsed> parse(const std::string& format, const std::string& text) {
   std::vector<Parsed> out;
   if (format == "krl") {
-    for (const auto& v :
-         all_matches(text, "LIN \\{X " + N + ", Y " + N + ", Z " + N + ", A " + N + ", B " + N + ", C " + N + "\\}")) {
+    for (const auto& v : all_matches(
+             text, "(?:LIN|PTP) \\{X " + N + ", Y " + N + ", Z " + N + ", A " + N + ", B " + N + ", C " + N + "\\}")) {
       out.push_back({{v[0], v[1], v[2]}, Rz(rad(v[3])) * Ry(rad(v[4])) * Rx(rad(v[5]))});
     }
   } else if (format == "rapid") {
@@ -101,7 +101,7 @@ std::vector<Parsed> parse(const std::string& format, const std::string& text) {
     }
   } else if (format == "urscript") {
     for (const auto& v :
-         all_matches(text, "movel\\(p\\[" + N + ", " + N + ", " + N + ", " + N + ", " + N + ", " + N + "\\]")) {
+         all_matches(text, "move[lj]\\(p\\[" + N + ", " + N + ", " + N + ", " + N + ", " + N + ", " + N + "\\]")) {
       out.push_back({Eigen::Vector3d(v[0], v[1], v[2]) * 1000.0, from_rotation_vector({v[3], v[4], v[5]})});
     }
   } else if (format == "fanuc") {
@@ -116,7 +116,8 @@ std::vector<Parsed> parse(const std::string& format, const std::string& text) {
       out.push_back({{v[0], v[1], v[2]}, Rx(rad(v[3])) * Ry(rad(v[4])) * Rz(rad(v[5]))});
     }
   } else if (format == "gcode") {
-    for (const auto& v : all_matches(text, "G1 X" + N + " Y" + N + " Z" + N + " A3=" + N + " B3=" + N + " C3=" + N)) {
+    for (const auto& v :
+         all_matches(text, "G[01] X" + N + " Y" + N + " Z" + N + " A3=" + N + " B3=" + N + " C3=" + N)) {
       Eigen::Matrix3d r = Eigen::Matrix3d::Zero();
       r.col(2) = -Eigen::Vector3d(v[3], v[4], v[5]);  // the tool vector points from the tip to the holder
       out.push_back({{v[0], v[1], v[2]}, r});
@@ -405,10 +406,10 @@ TEST(RobotProgram, ProcessLinesAfterThePathsFirstPointAndBeforeItsRetract) {
     // after the first path's retract (7 points) the same way.
     const auto moves_before = [&](std::size_t at) {
       const std::string head = text.substr(0, at);
-      if (format == "val3") return count_of(head, "movel(");
-      if (format == "fanuc") return count_of(head, "L P[");
-      if (format == "rapid") return count_of(head, "MoveL ");
-      if (format == "gcode") return count_of(head, "G1 X");
+      if (format == "val3") return count_of(head, "(pPath[");
+      if (format == "fanuc") return count_of(head, "L P[") + count_of(head, "J P[");
+      if (format == "rapid") return count_of(head, "MoveL ") + count_of(head, "MoveJ ");
+      if (format == "gcode") return count_of(head, "G1 X") + count_of(head, "G0 X");
       return parse(format, head).size();
     };
     EXPECT_EQ(moves_before(on[0]), 2u) << format;
@@ -418,6 +419,30 @@ TEST(RobotProgram, ProcessLinesAfterThePathsFirstPointAndBeforeItsRetract) {
   }
   o.process_on = "ARC_ON\nLIN {X 0}";
   EXPECT_THROW(write_program(two_paths(), "krl", o), Error);  // one line, no control characters
+}
+
+// The approach point of each path is reached by a joint move (the robot comes from anywhere), the path and the
+// retract by straight lines; every point, the approach included, parses back to the planned target.
+TEST(RobotProgram, ApproachByAJointMovePathAndRetractLinear) {
+  ProgramOptions o;
+  o.name = "t";
+  const std::vector<RobotTarget> planned = plan_targets(two_paths(), o);
+  ASSERT_EQ(planned.size(), 14u);
+  const std::vector<std::pair<std::string, std::pair<std::string, std::string>>> moves = {
+      {"krl", {"PTP {", "LIN {"}}, {"rapid", {"MoveJ ", "MoveL "}}, {"urscript", {"movej(", "movel("}},
+      {"fanuc", {"J P[", "L P["}}, {"val3", {"movej(", "movel("}},  {"gcode", {"G0 X", "G1 X"}}};
+  for (const auto& [format, kinds] : moves) {
+    const Program p = write_program(two_paths(), format, o);
+    EXPECT_EQ(count_of(p.files[0].text, kinds.first), 2u) << format;
+    EXPECT_EQ(count_of(p.files[0].text, kinds.second), 12u) << format;
+    if (format == "krl" || format == "urscript" || format == "gcode") {
+      const std::vector<Parsed> parsed = parse(format, p.files[0].text);
+      ASSERT_EQ(parsed.size(), planned.size()) << format;
+      for (std::size_t i = 0; i < planned.size(); ++i) {
+        EXPECT_LT((parsed[i].position - planned[i].position_mm).norm(), 1e-5) << format << " " << i;
+      }
+    }
+  }
 }
 
 // Blending on the interior points of each path only (3 of 5 a path), at the stated distance; none with 0.

@@ -71,8 +71,12 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
     const bool path = t.kind == MoveKind::kPath;
     const double speed = path ? options.speed_mm_s : options.approach_speed_mm_s;
     // TP speeds are whole mm/sec, at least 1. CNT is a share of the corner, not a distance.
-    moves[i] = "L P[" + std::to_string(local) + "] " + num(std::max(1.0, std::round(speed)), 0) + "mm/sec " +
-               (blends(targets, i, options) ? "CNT100" : "FINE") + " ;";
+    // The approach point by a joint move at the joints' full speed share (the robot comes from anywhere), the path
+    // and the retract linear.
+    moves[i] = t.kind == MoveKind::kApproach
+                   ? "J P[" + std::to_string(local) + "] 100% FINE ;"
+                   : "L P[" + std::to_string(local) + "] " + num(std::max(1.0, std::round(speed)), 0) + "mm/sec " +
+                         (blends(targets, i, options) ? "CNT100" : "FINE") + " ;";
     if (starts_path(targets, i) && !options.process_on.empty()) moves[i] += "\n" + tp_line(options.process_on);
     if (ends_path(targets, i) && !options.process_off.empty()) moves[i] += "\n" + tp_line(options.process_off);
     const Eigen::Vector3d& p = t.position_mm;

@@ -19,12 +19,14 @@ Program write_gcode(const std::vector<RobotTarget>& targets, const ProgramOption
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const RobotTarget& t = targets[i];
     const double feed = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) * 60.0;
-    text += "G1 X" + num(t.position_mm.x(), 6) + " Y" + num(t.position_mm.y(), 6) + " Z" + num(t.position_mm.z(), 6);
+    // The approach point at rapid traverse (G0), the path and the retract at the feed (G1).
+    text += std::string(t.kind == MoveKind::kApproach ? "G0" : "G1") + " X" + num(t.position_mm.x(), 6) + " Y" +
+            num(t.position_mm.y(), 6) + " Z" + num(t.position_mm.z(), 6);
     if (options.five_axis) {
       const Eigen::Vector3d v = -t.rotation.col(2);
       text += " A3=" + num(v.x(), 12) + " B3=" + num(v.y(), 12) + " C3=" + num(v.z(), 12);
     }
-    text += " F" + num(feed, 3) + "\n";
+    text += t.kind == MoveKind::kApproach ? std::string("\n") : " F" + num(feed, 3) + "\n";
     if (starts_path(targets, i) && !options.process_on.empty()) text += options.process_on + "\n";
     if (ends_path(targets, i) && !options.process_off.empty()) text += options.process_off + "\n";
   }

@@ -24,9 +24,11 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
     if (i == 0 || targets[i - 1].kind != t.kind) {
       line += speed_line(t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s);
     }
-    line += "LIN {X " + num(t.position_mm.x(), 6) + ", Y " + num(t.position_mm.y(), 6) + ", Z " +
-            num(t.position_mm.z(), 6) + ", A " + num(abc(0), 9) + ", B " + num(abc(1), 9) + ", C " + num(abc(2), 9) +
-            "}" + (blends(targets, i, options) ? " C_DIS" : "") + "\n";
+    // The approach point is reached by a joint move (the robot comes from anywhere), the path and the retract by
+    // straight lines.
+    line += std::string(t.kind == MoveKind::kApproach ? "PTP" : "LIN") + " {X " + num(t.position_mm.x(), 6) + ", Y " +
+            num(t.position_mm.y(), 6) + ", Z " + num(t.position_mm.z(), 6) + ", A " + num(abc(0), 9) + ", B " +
+            num(abc(1), 9) + ", C " + num(abc(2), 9) + "}" + (blends(targets, i, options) ? " C_DIS" : "") + "\n";
     if (starts_path(targets, i) && !options.process_on.empty()) line += options.process_on + "\n";
     if (ends_path(targets, i) && !options.process_off.empty()) line += options.process_off + "\n";
     moves.push_back(line);

@@ -48,8 +48,10 @@ Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOption
               num(t.position_mm.y(), 6) + "," + num(t.position_mm.z(), 6) + "],[" + num(q(0), 12) + "," +
               num(q(1), 12) + "," + num(q(2), 12) + "," + num(q(3), 12) + "],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n";
     const bool path = t.kind == MoveKind::kPath;
-    moves[i] = "    MoveL " + name + ", " + (path ? "vPath" : "vApproach") + ", " +
-               (blends(targets, i, options) ? "zPath" : "fine") + ", " + tool + " \\WObj:=" + wobj + ";\n";
+    // The approach point by a joint move (the robot comes from anywhere), the path and the retract linear.
+    moves[i] = std::string(t.kind == MoveKind::kApproach ? "    MoveJ " : "    MoveL ") + name + ", " +
+               (path ? "vPath" : "vApproach") + ", " + (blends(targets, i, options) ? "zPath" : "fine") + ", " + tool +
+               " \\WObj:=" + wobj + ";\n";
     if (starts_path(targets, i) && !options.process_on.empty()) moves[i] += "    " + options.process_on + "\n";
     if (ends_path(targets, i) && !options.process_off.empty()) moves[i] += "    " + options.process_off + "\n";
   }

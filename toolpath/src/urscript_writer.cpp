@@ -20,8 +20,12 @@ Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOpt
     rv = rotation_vector(t.rotation, i == 0 ? nullptr : &rv);
     const double v = (t.kind == MoveKind::kPath ? options.speed_mm_s : options.approach_speed_mm_s) / 1000.0;
     const Eigen::Vector3d p = t.position_mm / 1000.0;
-    text += "  movel(p[" + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " + num(p.z(), 9) + ", " + num(rv.x(), 12) + ", " +
-            num(rv.y(), 12) + ", " + num(rv.z(), 12) + "], a=0.5, v=" + num(v, 6) +
+    // The approach point by a joint move (movej with a pose: the controller solves the joints; its default joint
+    // speed and acceleration), the path and the retract linear.
+    const bool joint = t.kind == MoveKind::kApproach;
+    text += std::string(joint ? "  movej(p[" : "  movel(p[") + num(p.x(), 9) + ", " + num(p.y(), 9) + ", " +
+            num(p.z(), 9) + ", " + num(rv.x(), 12) + ", " + num(rv.y(), 12) + ", " + num(rv.z(), 12) +
+            (joint ? std::string("]") : "], a=0.5, v=" + num(v, 6)) +
             (blends(targets, i, options) ? ", r=" + num(options.blend_mm / 1000.0, 6) : std::string()) + ")\n";
     if (starts_path(targets, i) && !options.process_on.empty()) text += "  " + options.process_on + "\n";
     if (ends_path(targets, i) && !options.process_off.empty()) text += "  " + options.process_off + "\n";

@@ -45,7 +45,9 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
     const char* const descriptor = blends(targets, i, options) ? "mPath"
                                    : t.kind == MoveKind::kPath ? "mPathStop"
                                                                : "mApproach";
-    code += "  movel(pPath[" + std::to_string(i) + "], " + tool + ", " + descriptor + ")\n";
+    // The approach point by a joint move (the robot comes from anywhere), the path and the retract linear.
+    code += std::string(t.kind == MoveKind::kApproach ? "  movej(pPath[" : "  movel(pPath[") + std::to_string(i) +
+            "], " + tool + ", " + descriptor + ")\n";
     // VAL3 queues its moves: a process line waits for the point to be reached.
     const bool on = starts_path(targets, i) && !options.process_on.empty();
     const bool off = ends_path(targets, i) && !options.process_off.empty();
