@@ -58,6 +58,9 @@ class ExportCommand : public Command {
                  "in the format's own syntax; empty: none");
     c.add_option("--process-off", options_.process_off,
                  "One line written after the last point of each path, before its retract (arc off ...); empty: none");
+    c.add_option("--home", home_,
+                 "A joint position J1,...,J6 (deg) reached by a joint move before the first path and after the last "
+                 "(robot formats; not gcode or csv); empty: none");
     c.add_flag("--three-axis", three_axis_, "gcode: positions only (G1 X Y Z), no TRAORI tool vectors");
     c.add_option("--roll-cone-deg", roll_cone_deg_,
                  "Keep the tool x axis within this angle of --preferred-x (turning about z) to avoid wrist flips, "
@@ -82,6 +85,7 @@ class ExportCommand : public Command {
     o.frame_path = frame_path_;
     o.frames.roll_cone_rad = roll_cone_deg_ / 180.0 * kPi;
     o.frames.preferred_x = parse_vector(preferred_x_, "--preferred-x");
+    if (!home_.empty()) options_.home_deg = parse_numbers(home_, 6, "--home", "J1,J2,J3,J4,J5,J6");
     o.frames.max_jump_ratio = max_jump_ratio_;
     o.program = options_;
     o.program.name = name_;
@@ -126,6 +130,7 @@ class ExportCommand : public Command {
   double roll_cone_deg_ = 0.0;
   double max_jump_ratio_ = ToolFrameOptions{}.max_jump_ratio;
   std::string preferred_x_ = "1,0,0";
+  std::string home_;
   bool json_ = false;
 };
 

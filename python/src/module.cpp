@@ -152,7 +152,8 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
                      double speed_mm_s, double approach_speed_mm_s, double approach_mm, const std::string& name,
                      const std::string& tool, const std::string& work_object, std::size_t max_points, bool three_axis,
                      double roll_cone_deg, const std::vector<double>& preferred_x, double blend_mm,
-                     const std::string& process_on, const std::string& process_off) {
+                     const std::string& process_on, const std::string& process_off,
+                     const std::optional<std::vector<double>>& home) {
   static const char* const formats[] = {"krl", "rapid", "urscript", "fanuc", "val3", "gcode", "csv"};
   if (std::find(std::begin(formats), std::end(formats), format) == std::end(formats)) {
     throw Error("format: " + format + " not in {krl, rapid, urscript, fanuc, val3, gcode, csv}");
@@ -177,6 +178,10 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
   o.program.blend_mm = blend_mm;
   o.program.process_on = process_on;
   o.program.process_off = process_off;
+  if (home) {
+    if (home->size() != 6) throw Error("home: give six joint angles J1, ..., J6 in degrees");
+    o.program.home_deg = *home;
+  }
   check_export_name(o);
   CallFiles files({o.path_csv, o.frame_path}, {o.out_path});  // the part files too, when staged
   const ExportJobResult result = [&] {
@@ -421,7 +426,7 @@ PYBIND11_MODULE(_conform, m) {
         arg("approach_mm") = program.approach_mm, arg("name") = "", arg("tool") = program.tool,
         arg("work_object") = program.work_object, arg("max_points") = program.max_points, arg("three_axis") = false,
         arg("roll_cone_deg") = 0.0, arg("preferred_x") = std::vector<double>{1.0, 0.0, 0.0},
-        arg("blend_mm") = program.blend_mm, arg("process_on") = "", arg("process_off") = "");
+        arg("blend_mm") = program.blend_mm, arg("process_on") = "", arg("process_off") = "", arg("home") = py::none());
   const ErodedOptions eroded;
   m.def("generate_eroded", &job_generate_eroded, arg("out"), py::kw_only(), arg("rows") = eroded.rows,
         arg("cols") = eroded.cols, arg("length") = eroded.length_mm, arg("width") = eroded.width_mm,

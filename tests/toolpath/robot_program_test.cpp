@@ -445,6 +445,38 @@ TEST(RobotProgram, ApproachByAJointMovePathAndRetractLinear) {
   }
 }
 
+// A home joint position, reached by a joint move before the first path's approach and after the last retract, in
+// joints (deg; URScript rad); refused where there are no robot joints.
+TEST(RobotProgram, HomeJointPositionAtTheStartAndTheEnd) {
+  ProgramOptions o;
+  o.name = "t";
+  o.home_deg = {0.0, -90.0, 90.0, 0.0, 45.0, 180.0};
+  const std::vector<std::pair<std::string, std::pair<std::string, std::string>>> homes = {
+      {"krl", {"PTP {A1 0.000000, A2 -90.000000, A3 90.000000, A4 0.000000, A5 45.000000, A6 180.000000}", "PTP {X"}},
+      {"rapid", {"MoveAbsJ jHome\\NoEOffs", "MoveJ p1,"}},
+      {"urscript",
+       {"movej([0.000000000, -1.570796327, 1.570796327, 0.000000000, 0.785398163, 3.141592654])", "movej(p["}},
+      {"fanuc", {"J P[15] 100% FINE ;", "J P[1] 100% FINE ;"}},
+      {"val3", {"movej(jHome[0], tTool, mApproach)", "movej(pPath[0]"}}};
+  for (const auto& [format, lines] : homes) {
+    const std::string text = write_program(two_paths(), format, o).files[0].text;
+    EXPECT_EQ(count_of(text, lines.first), 2u) << format;
+    EXPECT_LT(text.find(lines.first), text.find(lines.second)) << format;  // home before the first approach
+    const std::size_t last_motion = std::max(text.rfind("LIN {"), std::max(text.rfind("MoveL "), text.rfind("movel(")));
+    const std::size_t last_fanuc = text.rfind("L P[");
+    EXPECT_GT(text.rfind(lines.first), std::max(last_motion == std::string::npos ? 0 : last_motion,
+                                                last_fanuc == std::string::npos ? 0 : last_fanuc))
+        << format;  // and after the last retract
+  }
+  EXPECT_NE(write_program(two_paths(), "fanuc", o).files[0].text.find("J1 = 0.000000 deg,\tJ2 = -90.000000 deg"),
+            std::string::npos);
+  EXPECT_NE(write_program(two_paths(), "val3", o).files[1].text.find("j2=\"-90.000000\""), std::string::npos);
+  EXPECT_THROW(write_program(two_paths(), "gcode", o), Error);
+  EXPECT_THROW(write_program(two_paths(), "csv", o), Error);
+  o.home_deg = {0.0, 0.0, 0.0};
+  EXPECT_THROW(write_program(two_paths(), "krl", o), Error);
+}
+
 // Blending on the interior points of each path only (3 of 5 a path), at the stated distance; none with 0.
 TEST(RobotProgram, BlendOnlyThroughTheInteriorPointsOfAPath) {
   ProgramOptions o;

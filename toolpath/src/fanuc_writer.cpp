@@ -90,17 +90,32 @@ Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOption
   const std::string head = " UFRAME_NUM=" + uf + " ;";
   const std::string tool = " UTOOL_NUM=" + ut + " ;";
   std::vector<std::string> main_lines = {head, tool};
+  // The home position: a joint-represented P[] of the main file, after its other points.
+  const std::size_t home_index = (parts.size() == 1 ? targets.size() : 0) + 1;
+  std::string home_move, home_position;
+  if (!options.home_deg.empty()) {
+    const std::vector<double>& j = options.home_deg;
+    home_move = "J P[" + std::to_string(home_index) + "] 100% FINE ;";
+    home_position = "P[" + std::to_string(home_index) + "]{\n   GP1:\n\tUF : " + uf + ", UT : " + ut +
+                    ",\n\tJ1 = " + num(j[0], 6) + " deg,\tJ2 = " + num(j[1], 6) + " deg,\tJ3 = " + num(j[2], 6) +
+                    " deg,\n\tJ4 = " + num(j[3], 6) + " deg,\tJ5 = " + num(j[4], 6) + " deg,\tJ6 = " + num(j[5], 6) +
+                    " deg\n};\n";
+    main_lines.push_back(home_move);
+  }
   if (parts.size() == 1) {
     main_lines.insert(main_lines.end(), moves.begin(), moves.end());
+    if (!home_move.empty()) main_lines.push_back(home_move);
     std::string pos;
     for (const std::string& p : positions) pos += p;
-    out.files.push_back({options.name + ".ls", program(options.name, "conform export", main_lines, pos)});
+    out.files.push_back(
+        {options.name + ".ls", program(options.name, "conform export", main_lines, pos + home_position)});
     return out;
   }
   for (std::size_t k = 0; k < parts.size(); ++k) {
     main_lines.push_back(" CALL " + upper(options.name) + "_" + std::to_string(k + 1) + " ;");
   }
-  out.files.push_back({options.name + ".ls", program(options.name, "conform export", main_lines, "")});
+  if (!home_move.empty()) main_lines.push_back(home_move);
+  out.files.push_back({options.name + ".ls", program(options.name, "conform export", main_lines, home_position)});
   for (std::size_t k = 0; k < parts.size(); ++k) {
     std::vector<std::string> lines = {head, tool};
     std::string pos;

@@ -40,12 +40,19 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
                      "\n; A B C in degrees, Z-Y'-X''\n";
   main += "$TOOL = " + tool_or(options, "TOOL_DATA[1]") + "\n$BASE = " + work_object_or(options, "BASE_DATA[1]") +
           "\n$ADVANCE = 3\n$APO.CDIS = " + num(options.blend_mm, 3) + "\n$ORI_TYPE = #VAR\n";
+  std::string home;
+  if (!options.home_deg.empty()) {
+    home = "PTP {A1 " + num(options.home_deg[0], 6);
+    for (int k = 1; k < 6; ++k) home += ", A" + std::to_string(k + 1) + " " + num(options.home_deg[k], 6);
+    home += "}  ; home\n";
+  }
+  main += home;
   if (parts.size() == 1) {
     for (const std::string& m : moves) main += m;
   } else {
     for (std::size_t k = 0; k < parts.size(); ++k) main += options.name + "_" + std::to_string(k + 1) + "( )\n";
   }
-  main += "END\n";
+  main += home + "END\n";
   program.files.push_back({options.name + ".src", main});
   if (parts.size() == 1) return program;
   for (std::size_t k = 0; k < parts.size(); ++k) {

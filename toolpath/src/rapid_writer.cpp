@@ -19,6 +19,11 @@ std::string module(const std::string& name, const std::string& body, const std::
                    const ProgramOptions& options) {
   std::string text = "MODULE " + name + "\n  ! " + provenance(options, targets.size()) + "\n";
   text += speeddata("vPath", options.speed_mm_s) + speeddata("vApproach", options.approach_speed_mm_s);
+  if (!options.home_deg.empty()) {
+    text += "  LOCAL CONST jointtarget jHome := [[" + num(options.home_deg[0], 6);
+    for (int k = 1; k < 6; ++k) text += "," + num(options.home_deg[k], 6);
+    text += "],[9E9,9E9,9E9,9E9,9E9,9E9]];\n";
+  }
   if (options.blend_mm > 0.0) {
     // z1's proportions (RAPID reference manual, "zonedata"), scaled to the blend distance.
     const double b = options.blend_mm;
@@ -34,6 +39,9 @@ std::string module(const std::string& name, const std::string& body, const std::
 Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOptions& options) {
   const std::string tool = tool_or(options, "tool0");
   const std::string wobj = work_object_or(options, "wobj0");
+  const std::string home = options.home_deg.empty()
+                               ? ""
+                               : "    MoveAbsJ jHome\\NoEOffs, vApproach, fine, " + tool + " \\WObj:=" + wobj + ";\n";
   const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
   Program program;
   program.parts = parts.size();
@@ -56,16 +64,16 @@ Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOption
     if (ends_path(targets, i) && !options.process_off.empty()) moves[i] += "    " + options.process_off + "\n";
   }
   if (parts.size() == 1) {
-    std::string body = "  PROC main()\n    ConfL \\Off;\n";
+    std::string body = "  PROC main()\n    ConfL \\Off;\n" + home;
     for (const std::string& m : moves) body += m;
-    body += "  ENDPROC\n";
+    body += home + "  ENDPROC\n";
     program.files.push_back({options.name + ".mod", module(options.name, body, data, options)});
     return program;
   }
-  std::string body = "  PROC main()\n    ConfL \\Off;\n";
+  std::string body = "  PROC main()\n    ConfL \\Off;\n" + home;
   for (std::size_t k = 0; k < parts.size(); ++k)
     body += "    " + options.name + "_" + std::to_string(k + 1) + "_run;\n";
-  body += "  ENDPROC\n";
+  body += home + "  ENDPROC\n";
   program.files.push_back({options.name + ".mod", module(options.name, body, {}, options)});
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const std::string name = options.name + "_" + std::to_string(k + 1);

@@ -47,6 +47,11 @@ bool ProgramOptions::IsValid(std::string* error) const {
   if (!name_text(tool) || !name_text(work_object)) why << "tool and work-object names: letters, digits, _ [ ] only; ";
   if (!rigid(T_base_part)) why << "T_base_part is not a rigid transform; ";
   if (!(std::isfinite(blend_mm) && blend_mm >= 0.0 && blend_mm <= 100.0)) why << "the blend must be in [0, 100] mm; ";
+  if (!home_deg.empty() && (home_deg.size() != 6 || !std::all_of(home_deg.begin(), home_deg.end(), [](double j) {
+                              return std::isfinite(j) && std::abs(j) <= 720.0;
+                            }))) {
+    why << "the home position must be six joint angles within +-720 deg; ";
+  }
   for (const std::string* line : {&process_on, &process_off}) {
     if (std::any_of(line->begin(), line->end(), [](char c) { return std::iscntrl(static_cast<unsigned char>(c)); })) {
       why << "a process line may not hold a line break or another control character; ";
@@ -131,6 +136,9 @@ Program write_program(const ToolPath& path, const std::string& format, const Pro
   program_extension(format);  // refuses an unknown format
   const std::vector<RobotTarget> targets = plan_targets(path, options);
   if (targets.empty()) throw Error("export: the path has no points");
+  if (!options.home_deg.empty() && (format == "gcode" || format == "csv")) {
+    throw Error("export: a home joint position (--home) is for robot programs; " + format + " has no robot joints");
+  }
   Program program;
   if (format == "krl") program = detail::write_krl(targets, options);
   if (format == "rapid") program = detail::write_rapid(targets, options);

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "conform/core/constants.h"
 #include "conform/toolpath/robot_angles.h"
 #include "program_writers.h"
 
@@ -14,6 +15,13 @@ Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOpt
                      "\n  # poses p[x, y, z, rx, ry, rz]: metres and a rotation vector in radians\n";
   if (!options.tool.empty()) text += "  # tool: " + options.tool + " (set the TCP in the installation)\n";
   if (!options.work_object.empty()) text += "  # work object: " + options.work_object + "\n";
+  std::string home;
+  if (!options.home_deg.empty()) {
+    home = "  movej([" + num(options.home_deg[0] * kPi / 180.0, 9);
+    for (int k = 1; k < 6; ++k) home += ", " + num(options.home_deg[k] * kPi / 180.0, 9);
+    home += "])  # home, rad\n";
+  }
+  text += home;
   Eigen::Vector3d rv = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const RobotTarget& t = targets[i];
@@ -30,7 +38,7 @@ Program write_urscript(const std::vector<RobotTarget>& targets, const ProgramOpt
     if (starts_path(targets, i) && !options.process_on.empty()) text += "  " + options.process_on + "\n";
     if (ends_path(targets, i) && !options.process_off.empty()) text += "  " + options.process_off + "\n";
   }
-  text += "end\n";
+  text += home + "end\n";
   Program program;
   program.files.push_back({options.name + ".script", text});
   return program;

@@ -31,9 +31,17 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
       "    <Data name=\"mApproach\" access=\"private\" xsi:type=\"array\" type=\"mdesc\" size=\"1\">\n"
       "      <Value key=\"0\" tvel=\"" +
       num(options.approach_speed_mm_s, 3) + "\" blend=\"off\" />\n    </Data>\n";
+  if (!options.home_deg.empty()) {
+    data +=
+        "    <Data name=\"jHome\" access=\"private\" xsi:type=\"array\" type=\"jointRx\" size=\"1\">\n      <Value "
+        "key=\"0\"";
+    for (int k = 0; k < 6; ++k) data += " j" + std::to_string(k + 1) + "=\"" + num(options.home_deg[k], 6) + "\"";
+    data += " />\n    </Data>\n";
+  }
   data += "    <Data name=\"pPath\" access=\"private\" xsi:type=\"array\" type=\"pointRx\" size=\"" +
           std::to_string(targets.size()) + "\">\n";
   std::string code = "begin\n";
+  if (!options.home_deg.empty()) code += "  movej(jHome[0], " + tool + ", mApproach)\n";
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const RobotTarget& t = targets[i];
@@ -56,6 +64,7 @@ Program write_val3(const std::vector<RobotTarget>& targets, const ProgramOptions
     if (off) code += "  " + options.process_off + "\n";
   }
   data += "    </Data>\n  </Datas>\n</Database>\n";
+  if (!options.home_deg.empty()) code += "  movej(jHome[0], " + tool + ", mApproach)\n";
   code += "  waitEndMove()\nend\n";
   const std::string pgx =
       "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Programs xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "

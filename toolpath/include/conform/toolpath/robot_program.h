@@ -42,6 +42,10 @@ struct ProgramOptions {
   // spindle, dispenser (the format's own syntax, as the controller takes it). Empty: none. No control characters.
   std::string process_on;
   std::string process_off;
+  // A joint position (six axes, deg) the robot moves to by a joint move before the first path and after the last:
+  // KRL PTP {A1 .. A6}, RAPID MoveAbsJ, URScript movej (radians), FANUC J to a joint-represented P[], VAL3 movej to
+  // a jointRx. Empty: none. Not for gcode or csv (no robot joints).
+  std::vector<double> home_deg;
   std::string source;  // written into the header comment (the input file)
 
   bool IsValid(std::string* error) const;
