@@ -26,7 +26,7 @@ html::Level level_of(AlignTrust trust) {
   return html::Level::kFail;
 }
 
-std::string html_fraction(double share) {
+std::string share_text(double share) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3f", share);
   return text;
@@ -116,7 +116,7 @@ html::Page align_report(const AlignOptions& options, const AlignResult& r, const
   page.options = {{"method", to_string(r.method)},
                   {"init", to_string(options.init)},
                   {"max_distance_mm", r.max_distance_mm},
-                  {"overlap", overlap_estimated ? nlohmann::json("estimated: " + html_fraction(r.icp.inlier_fraction))
+                  {"overlap", overlap_estimated ? nlohmann::json("estimated: " + share_text(r.icp.inlier_fraction))
                                                 : nlohmann::json(options.overlap > 0.0 ? options.overlap : 1.0)},
                   {"max_iterations", options.max_iterations},
                   {"free_tolerance_mm", options.free_tolerance_mm},

@@ -29,8 +29,8 @@ constexpr double kMinEstimatedOverlap = 0.2;
 // the fit's residual noise (two real scans of one surface disagree by 2.0-2.4 times their local noise: calibration,
 // sampling; the bunny range scans). sqrt(3): the pose may at most double the std of a deviation at the worst-placed
 // scan point (sqrt(sigma^2 + 3 sigma^2) = 2 sigma). Measured with the fit's bias counted (align_consistency.h): over
-// seed streams 0-2 of the workpiece matrix no wrong pose is within it (the closest 1.15 times; 42 of 120 seeds at 2
-// times, one 1.01 times), and the right bunny poses are fixed to 0.7-1.9 times the residual noise
+// seed streams 0-2 of the workpiece matrix no wrong pose is within it (against the fit's noise, the closest was 1.15
+// times it; at 2 times one was 1.01 times), and the right bunny poses are fixed to 0.7-1.9 times the residual noise
 // (docs/measurements/real_pairs.md, docs/align.md).
 constexpr double kPoseNoiseShare = 1.7320508075688772;
 // A stated tolerance +-t asks a pose displacement std of t / 6: three std use at most half of the tolerance.
@@ -131,22 +131,21 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   const bool estimated = options.overlap == 0.0 && !reference.has_surface();
   const double expected_overlap = options.overlap > 0.0 ? options.overlap : estimated ? icp.inlier_fraction : 1.0;
   const bool coarse_start = options.init == AlignInit::kPca || options.init == AlignInit::kFpfh;
-  if (ranking.ambiguous && !coarse_start) {
-    // From a start the user gave (ranked against its symmetric turns, align.cpp): the data cannot tell the turns
-    // apart, so the user's placement decided.
+  if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
-    check.push_back("'" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
-                    how_far(best, other, centre) +
-                    " (the part is near-symmetric): the scan does not tell them apart, so the start given decided; "
-                    "check it");
-  } else if (ranking.ambiguous) {
-    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
-    const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
-    no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
-                 how_far(best, other, centre) +
-                 format(" (inlier share %.3f against %.3f, see starts)", other.inlier_share, best.inlier_share) +
-                 kWhatToDo);
+    const std::string pose = "fits almost as well as '" + best.label + "' at a pose " + how_far(best, other, centre);
+    if (coarse_start) {
+      no.push_back("coarse start '" + other.label + "' " + pose +
+                   format(" (inlier share %.3f against %.3f, see starts)", other.inlier_share, best.inlier_share) +
+                   kWhatToDo);
+    } else {
+      // From a start the user gave (ranked against its symmetric turns, align.cpp): the data cannot tell the turns
+      // apart, so the user's placement decided.
+      check.push_back("'" + other.label + "' " + pose +
+                      " (the part is near-symmetric): the scan does not tell them apart, so the start given decided; "
+                      "check it");
+    }
   }
   if (ranking.best >= 0 && result.coarse.inlier_distance_mm > 0.0) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];

@@ -12,57 +12,15 @@
 
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/toolpath/robot_angles.h"
 #include "conform/toolpath/robot_program.h"
+#include "hand_rotations.h"
 
 namespace conform {
 namespace {
 
+using namespace test;  // hand_rotations.h
+
 constexpr double kPositionTol = 1e-6;  // mm
-constexpr double kAxisTol = 1e-9;      // rad
-
-double rad(double deg) { return deg * kPi / 180.0; }
-
-// Elementary rotations, written out (right-handed, active).
-Eigen::Matrix3d Rx(double a) {
-  Eigen::Matrix3d m;
-  m << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
-  return m;
-}
-Eigen::Matrix3d Ry(double a) {
-  Eigen::Matrix3d m;
-  m << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
-  return m;
-}
-Eigen::Matrix3d Rz(double a) {
-  Eigen::Matrix3d m;
-  m << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
-  return m;
-}
-
-// Unit quaternion (w, x, y, z) -> matrix (ABB's orient, w = q1).
-Eigen::Matrix3d from_quaternion(double w, double x, double y, double z) {
-  Eigen::Matrix3d m;
-  m << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-      2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
-      2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-  return m;
-}
-
-// Rodrigues: rotation vector (UR) -> matrix.
-Eigen::Matrix3d from_rotation_vector(const Eigen::Vector3d& v) {
-  const double a = v.norm();
-  if (a == 0.0) return Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d k = v / a;
-  Eigen::Matrix3d K;
-  K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
-  return Eigen::Matrix3d::Identity() + std::sin(a) * K + (1 - std::cos(a)) * K * K;
-}
-
-double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  const Eigen::AngleAxisd d(a.transpose() * b);
-  return std::abs(d.angle());
-}
 
 struct Parsed {
   Eigen::Vector3d position;
@@ -232,76 +190,6 @@ TEST(RobotProgram, ApproachAndRetractAlongMinusZ) {
   EXPECT_LT((t[0].position_mm - Eigen::Vector3d(-25, 0, 0)).norm(), 1e-12);
   EXPECT_EQ(t[3].kind, MoveKind::kRetract);
   EXPECT_LT((t[3].position_mm - Eigen::Vector3d(-25, 10, 0)).norm(), 1e-12);
-}
-
-TEST(RobotAngles, EulerAnglesStayInTheControllersRangeThroughPlusMinus180) {
-  // A turn about z from 170 to 190 deg and back: A stays in (-180, 180] (it steps from 180 to -179), the rotation it
-  // composes moves on smoothly, and so does the quaternion.
-  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
-  Eigen::Vector4d q = Eigen::Vector4d::Zero();
-  int wrapped = 0;
-  for (int i = 0; i <= 40; ++i) {
-    const double a = rad(170.0 + (i <= 20 ? i : 40 - i));
-    const Eigen::Matrix3d r = Rz(a) * Rx(rad(179.5 + 0.05 * i));
-    const Eigen::Vector3d before = abc;
-    const Eigen::Vector4d q_before = q;
-    abc = euler_zyx_deg(r, i == 0 ? nullptr : &abc);
-    q = quaternion_wxyz(r, i == 0 ? nullptr : &q);
-    for (int k : {0, 2}) EXPECT_TRUE(abc(k) > -180.0 && abc(k) <= 180.0) << i;
-    if (i > 0) {
-      for (int k = 0; k < 3; ++k) {
-        const double step = std::abs(abc(k) - before(k));
-        EXPECT_LT(std::min(step, std::abs(step - 360.0)), 1.5) << i;  // smooth but for whole turns
-        wrapped += step > 180.0;
-      }
-      EXPECT_LT((q - q_before).norm(), 0.02) << i;
-    }
-    EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol);
-  }
-  EXPECT_GT(wrapped, 0);  // the path does cross +-180
-}
-
-TEST(RobotAngles, GimbalLockKeepsTheFirstAngleAndComposesExactly) {
-  const Eigen::Matrix3d r = Rz(rad(30)) * Ry(kPi / 2) * Rx(rad(10));
-  const Eigen::Vector3d abc = euler_zyx_deg(r, nullptr);
-  EXPECT_NEAR(abc(0), 0.0, 1e-9);
-  EXPECT_NEAR(abc(1), 90.0, 1e-6);
-  EXPECT_NEAR(abc(2), -20.0, 1e-9);  // only C - A is defined at B = 90
-  const Eigen::Vector3d prev(30, 89, 10);
-  const Eigen::Vector3d kept = euler_zyx_deg(r, &prev);
-  EXPECT_NEAR(kept(0), 30.0, 1e-9);
-  EXPECT_NEAR(kept(2), 10.0, 1e-9);
-  const Eigen::Vector3d xyz = euler_xyz_deg(Rx(rad(15)) * Ry(-kPi / 2) * Rz(rad(5)), nullptr);
-  EXPECT_LT(angle_between(Rx(rad(xyz(0))) * Ry(rad(xyz(1))) * Rz(rad(xyz(2))), Rx(rad(15)) * Ry(-kPi / 2) * Rz(rad(5))),
-            kAxisTol);
-}
-
-TEST(RobotAngles, StableApproachingGimbalLock) {
-  // B -> 90 deg with A = 30, C = 10: the angles stay put (the matrix still defines them down to cos B ~ 1e-12, and
-  // at the lock A is held), and compose to the frame within 1e-9 rad all the way.
-  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
-  for (int k = 0; k <= 14; ++k) {
-    const double delta = k == 14 ? 0.0 : std::pow(10.0, -k);
-    const Eigen::Matrix3d r = Rz(rad(30)) * Ry(kPi / 2 - delta) * Rx(rad(10));
-    abc = euler_zyx_deg(r, k == 0 ? nullptr : &abc);
-    EXPECT_NEAR(abc(0), 30.0, 1e-2) << delta;
-    EXPECT_NEAR(abc(2), 10.0, 1e-2) << delta;
-    EXPECT_LT(angle_between(Rz(rad(abc(0))) * Ry(rad(abc(1))) * Rx(rad(abc(2))), r), kAxisTol) << delta;
-  }
-}
-
-TEST(RobotAngles, RotationVectorNearPiStaysOnOneSide) {
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (int i = 0; i <= 10; ++i) {
-    const double a = kPi - 0.01 + 0.002 * i;  // passes through pi
-    const Eigen::Matrix3d r = from_rotation_vector(a * Eigen::Vector3d(0, 0.6, 0.8));
-    const Eigen::Vector3d before = v;
-    v = rotation_vector(r, i == 0 ? nullptr : &v);
-    if (i > 0) {
-      EXPECT_LT((v - before).norm(), 0.01) << i;
-    }
-    EXPECT_LT(angle_between(from_rotation_vector(v), r), kAxisTol);
-  }
 }
 
 TEST(RobotProgram, LongProgramsAreSplitIntoPartsWithTheSameMoves) {
