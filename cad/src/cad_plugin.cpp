@@ -36,6 +36,9 @@ void fill(const conform::cad::ReadShape& read, const conform::cad::Tessellation&
   result->triangle_count = t.triangles.size() / 3;
   result->bodies = copy_array(t.bodies);
   result->body_count = t.bodies.size();
+  result->triangle_faces = copy_array(t.triangle_faces);
+  result->faces = copy_array(t.faces);
+  result->face_count = t.faces.size();
   std::string warnings;
   for (const std::string& w : t.warnings) warnings += w + "\n";
   if (!warnings.empty()) result->warnings = copy_text(warnings);
@@ -75,5 +78,7 @@ extern "C" void conform_cad_free(conform_cad_result* result) {
   std::free(result->triangles);
   std::free(result->bodies);
   std::free(result->warnings);
+  std::free(result->triangle_faces);
+  std::free(result->faces);
   *result = conform_cad_result{};
 }

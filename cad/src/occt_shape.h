@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include "conform/core/cad_plugin_abi.h"
@@ -45,9 +46,16 @@ TriangleEstimate estimate_triangles(const TopoDS_Shape& shape, double deflection
 struct Tessellation {
   std::vector<double> vertices;     // x y z, mm
   std::vector<std::int32_t> triangles;
+  std::vector<std::int32_t> triangle_faces;  // per triangle, the index into faces
+  std::vector<conform_cad_face> faces;       // every face of every body, in the order visited
   std::vector<conform_cad_body> bodies;
   std::vector<std::string> warnings;
 };
+
+// The face's surface type, nominal parameters and outside (occt_faces.cpp); `body` its body's index.
+conform_cad_face describe_face(const TopoDS_Face& face, std::size_t body);
+// The face of a solid whose triangles were reversed (its faces pointed inwards): outside is the other side.
+void turn_inside_out(conform_cad_face& face);
 
 // Throws std::runtime_error when the shape has no faces, no face could be tessellated, or the tessellation is
 // estimated (before meshing) or found to need more than max_triangles.

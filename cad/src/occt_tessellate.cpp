@@ -69,14 +69,19 @@ std::string number(double x) {
 }
 
 // Appends the body's faces to `out`; returns its record (volume from the divergence theorem, about its first vertex).
-conform_cad_body add_body(const Body& body, std::size_t max_triangles, double deflection_mm, Tessellation& out) {
+// Each face is recorded (describe_face) with the triangles it gave.
+conform_cad_body add_body(const Body& body, std::size_t body_index, std::size_t max_triangles, double deflection_mm,
+                          Tessellation& out) {
   conform_cad_body record{};
   record.kind = body.kind;
   const std::size_t first_vertex = out.vertices.size() / 3;
   const std::size_t first_triangle = out.triangles.size() / 3;
+  const std::size_t first_face = out.faces.size();
   for (TopExp_Explorer e(body.shape, TopAbs_FACE); e.More(); e.Next()) {
     const TopoDS_Face& face = TopoDS::Face(e.Current());
     ++record.faces;
+    const auto face_index = static_cast<std::int32_t>(out.faces.size());
+    out.faces.push_back(describe_face(face, body_index));
     TopLoc_Location location;
     const Handle(Poly_Triangulation) mesh = BRep_Tool::Triangulation(face, location);
     if (mesh.IsNull() || mesh->NbTriangles() == 0) {
@@ -87,6 +92,8 @@ conform_cad_body add_body(const Body& body, std::size_t max_triangles, double de
     if (so_far > max_triangles) {
       over_budget(static_cast<double>(so_far), "came to more than", max_triangles, deflection_mm);
     }
+    out.faces.back().triangles = static_cast<std::size_t>(mesh->NbTriangles());
+    out.triangle_faces.insert(out.triangle_faces.end(), static_cast<std::size_t>(mesh->NbTriangles()), face_index);
     const gp_Trsf placement = location.Transformation();
     const std::size_t base = out.vertices.size() / 3;
     for (int i = 1; i <= mesh->NbNodes(); ++i) {
@@ -132,6 +139,7 @@ conform_cad_body add_body(const Body& body, std::size_t max_triangles, double de
     }
     record.volume_mm3 = -record.volume_mm3;
     record.flipped = 1;
+    for (std::size_t f = first_face; f < out.faces.size(); ++f) turn_inside_out(out.faces[f]);
   }
   return record;
 }
@@ -160,7 +168,7 @@ Tessellation tessellate(const TopoDS_Shape& shape, double deflection_mm, double 
   Tessellation out;
   std::size_t faces = 0, failed = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    out.bodies.push_back(add_body(bodies[i], max_triangles, deflection_mm, out));
+    out.bodies.push_back(add_body(bodies[i], i, max_triangles, deflection_mm, out));
     const conform_cad_body& b = out.bodies.back();
     faces += b.faces;
     failed += b.failed_faces;

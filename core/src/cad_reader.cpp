@@ -12,6 +12,7 @@
 
 #include "cad_child.h"
 #include "conform/core/cad.h"
+#include "conform/core/cad_faces.h"
 #include "conform/core/cad_plugin_abi.h"
 #include "conform/core/error.h"
 #include "conform/core/input_file.h"
@@ -124,8 +125,28 @@ bool is_cad_file(const std::string& path) {
   return is_step_extension(e) || e == ".iges" || e == ".igs";
 }
 
-Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport* report_out,
-              std::vector<std::string>* warnings) {
+namespace {
+
+CadFace face_of(const conform_cad_face& f) {
+  CadFace face;
+  face.type = static_cast<CadSurfaceType>(f.surface);  // range checked by decode_cad_result
+  face.reversed = f.reversed != 0;
+  face.sense = f.sense;
+  face.body = f.body;
+  face.area_mm2 = f.area_mm2;
+  face.centre_mm = Eigen::Vector3d(f.centre_mm[0], f.centre_mm[1], f.centre_mm[2]);
+  face.origin_mm = Eigen::Vector3d(f.origin_mm[0], f.origin_mm[1], f.origin_mm[2]);
+  face.axis = Eigen::Vector3d(f.axis[0], f.axis[1], f.axis[2]);
+  if (is_analytic(face.type)) face.axis.normalize();  // a unit vector to 1e-6 on the wire; exactly one here
+  face.radius_mm = f.radius_mm;
+  face.minor_radius_mm = f.minor_radius_mm;
+  face.half_angle_rad = f.half_angle_rad;
+  return face;
+}
+
+// read_cad's work; `faces` (when not null) also receives the faces, per welded triangle and per face.
+Mesh read_cad_with_faces(const std::string& path, const CadReadOptions& options, CadReport* report_out,
+                         std::vector<std::string>* warnings, CadFaces* faces) {
   std::string why;
   if (!options.IsValid(&why)) throw Error(path + ": " + why);
   const std::string bytes = read_input_file(path);
@@ -144,7 +165,8 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
   request.angular_deflection_rad = options.angular_deflection();
   request.max_triangles = options.max_triangles;
   detail::CadWireResult result = detail::read_cad_in_child(path, request, options);
-  MeshWeldResult welded = weld_coincident_vertices(std::move(result.mesh), path);
+  std::vector<std::size_t> kept;
+  MeshWeldResult welded = weld_coincident_vertices(std::move(result.mesh), path, faces != nullptr ? &kept : nullptr);
 
   CadReport cad;
   cad.read = true;
@@ -168,6 +190,17 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
       start = end + 1;
     }
   }
+  if (faces != nullptr) {
+    faces->faces.clear();
+    for (const conform_cad_face& f : result.faces) faces->faces.push_back(face_of(f));
+    faces->triangle_face.resize(kept.size());
+    for (CadFace& f : faces->faces) f.triangles = 0;
+    for (std::size_t t = 0; t < kept.size(); ++t) {
+      const std::int32_t face = result.triangle_faces[kept[t]];  // in range: checked by decode_cad_result
+      faces->triangle_face[t] = face;
+      ++faces->faces[static_cast<std::size_t>(face)].triangles;
+    }
+  }
   if (!options.save_mesh_path.empty()) {
     WriteOptions write;
     write.double_precision = true;  // read back, the same coordinates to the last bit (.ply; .stl is float)
@@ -176,6 +209,20 @@ Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport*
   }
   if (report_out != nullptr) *report_out = cad;
   return std::move(welded.mesh);
+}
+
+}  // namespace
+
+Mesh read_cad(const std::string& path, const CadReadOptions& options, CadReport* report_out,
+              std::vector<std::string>* warnings) {
+  return read_cad_with_faces(path, options, report_out, warnings, nullptr);
+}
+
+CadFaces read_cad_faces(const std::string& path, const CadReadOptions& options, CadReport* report,
+                        std::vector<std::string>* warnings) {
+  CadFaces out;
+  out.mesh = read_cad_with_faces(path, options, report, warnings, &out);
+  return out;
 }
 
 }  // namespace conform

@@ -68,6 +68,102 @@ bool fail(std::string* why, const std::string& text) {
 
 bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
+constexpr std::size_t kFaceBytes = 3 * 4 + 2 * 8 + 13 * 8;
+
+bool take_face(Reader& in, conform_cad_face* f) {
+  std::int32_t surface = 0, reversed = 0, sense = 0;
+  std::uint64_t body = 0, triangles = 0;
+  bool ok = in.take(&surface) && in.take(&reversed) && in.take(&sense) && in.take(&body) && in.take(&triangles) &&
+            in.take(&f->area_mm2);
+  for (double* v : {f->centre_mm, f->origin_mm, f->axis}) {
+    for (int k = 0; k < 3; ++k) ok = ok && in.take(&v[k]);
+  }
+  ok = ok && in.take(&f->radius_mm) && in.take(&f->minor_radius_mm) && in.take(&f->half_angle_rad);
+  f->surface = surface;
+  f->reversed = reversed;
+  f->sense = sense;
+  f->body = body;
+  f->triangles = triangles;
+  return ok;
+}
+
+// Why the face record cannot be right, or empty.
+std::string face_problem(const conform_cad_face& f, std::size_t bodies) {
+  if (f.surface < CONFORM_CAD_PLANE || f.surface > CONFORM_CAD_OTHER_SURFACE) {
+    return "an unknown surface type " + std::to_string(f.surface);
+  }
+  if ((f.reversed != 0 && f.reversed != 1) || f.sense < -1 || f.sense > 1) return "an orientation out of range";
+  if (f.body >= bodies) return "body " + std::to_string(f.body) + " of " + std::to_string(bodies);
+  const double numbers[] = {f.area_mm2, f.radius_mm, f.minor_radius_mm, f.half_angle_rad};
+  for (const double x : numbers) {
+    if (!std::isfinite(x)) return "a number that is not finite";
+  }
+  if (!finite3(f.centre_mm) || !finite3(f.origin_mm) || !finite3(f.axis)) return "a point that is not finite";
+  if (f.area_mm2 < 0.0) return "a negative area";
+  if (f.surface > CONFORM_CAD_TORUS) return "";
+  const double norm = std::sqrt(f.axis[0] * f.axis[0] + f.axis[1] * f.axis[1] + f.axis[2] * f.axis[2]);
+  if (std::abs(norm - 1.0) > 1e-6) return "an axis that is not a unit vector";
+  if (f.sense == 0) return "an analytic surface without an outside";
+  const bool round = f.surface == CONFORM_CAD_CYLINDER || f.surface == CONFORM_CAD_SPHERE ||
+                     f.surface == CONFORM_CAD_TORUS;
+  if (round && !(f.radius_mm > 0.0)) return "a radius that is not > 0";
+  if (f.surface == CONFORM_CAD_TORUS && !(f.minor_radius_mm > 0.0)) return "a minor radius that is not > 0";
+  if (f.surface == CONFORM_CAD_CONE && !(f.half_angle_rad > 0.0 && f.half_angle_rad < 1.5707963267948966)) {
+    return "a cone angle out of (0, 90) deg";
+  }
+  return "";
+}
+
+// The faces section after the warnings (the triangles' faces and the face records), checked against the mesh and
+// the bodies already decoded.
+bool decode_faces(Reader& in, CadWireResult* out, std::string* why) {
+  std::uint64_t count = 0, face_count = 0;
+  if (!in.take(&count)) return fail(why, "a truncated count of triangle faces");
+  if (count != out->mesh.faces.size()) return fail(why, "triangle faces for other than every triangle");
+  const char* at = in.take_array(count, sizeof(std::int32_t));
+  if (at == nullptr) return fail(why, "more triangle faces than bytes");
+  out->triangle_faces.resize(count);
+  if (count > 0) std::memcpy(out->triangle_faces.data(), at, count * sizeof(std::int32_t));
+  if (!in.take(&face_count)) return fail(why, "a truncated face count");
+  if (face_count > in.left() / kFaceBytes) return fail(why, "more faces than bytes");
+  std::uint64_t body_faces = 0;
+  for (const conform_cad_body& b : out->bodies) body_faces += b.faces;
+  if (face_count != body_faces) return fail(why, "faces that do not add up to the bodies' faces");
+  out->faces.resize(face_count);
+  std::vector<std::uint64_t> per_body(out->bodies.size(), 0), failed(out->bodies.size(), 0),
+      triangles(out->bodies.size(), 0);
+  for (std::size_t i = 0; i < face_count; ++i) {
+    conform_cad_face& f = out->faces[i];
+    if (!take_face(in, &f)) return fail(why, "a truncated face");
+    const std::string problem = face_problem(f, out->bodies.size());
+    if (!problem.empty()) return fail(why, "face " + std::to_string(i + 1) + " with " + problem);
+    ++per_body[f.body];
+    failed[f.body] += f.triangles == 0 ? 1 : 0;
+    triangles[f.body] += f.triangles;
+  }
+  for (std::size_t b = 0; b < out->bodies.size(); ++b) {
+    const conform_cad_body& body = out->bodies[b];
+    if (per_body[b] != body.faces || failed[b] != body.failed_faces || triangles[b] != body.triangles) {
+      return fail(why, "body " + std::to_string(b + 1) + " whose faces do not add up");
+    }
+  }
+  std::vector<std::uint64_t> seen(face_count, 0);
+  for (std::size_t t = 0; t < count; ++t) {
+    const std::int32_t face = out->triangle_faces[t];
+    if (face < 0 || static_cast<std::uint64_t>(face) >= face_count) {
+      return fail(why, "triangle " + std::to_string(t) + " of face " + std::to_string(face) + " of " +
+                           std::to_string(face_count));
+    }
+    ++seen[static_cast<std::size_t>(face)];
+  }
+  for (std::size_t i = 0; i < face_count; ++i) {
+    if (seen[i] != out->faces[i].triangles) {
+      return fail(why, "face " + std::to_string(i + 1) + " whose triangles do not match its count");
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string cad_progress_message(const char* stage, double fraction) {
@@ -106,6 +202,25 @@ std::string cad_result_message(const conform_cad_result& r) {
   }
   const char* warnings = r.warnings != nullptr ? r.warnings : "";
   put_text(p, warnings, std::strlen(warnings));
+  const std::size_t triangle_faces = r.triangle_faces != nullptr ? r.triangle_count : 0;
+  put(p, static_cast<std::uint64_t>(triangle_faces));
+  p.append(reinterpret_cast<const char*>(r.triangle_faces), triangle_faces * sizeof(std::int32_t));
+  put(p, static_cast<std::uint64_t>(r.face_count));
+  for (std::size_t i = 0; i < r.face_count; ++i) {
+    const conform_cad_face& f = r.faces[i];
+    put(p, static_cast<std::int32_t>(f.surface));
+    put(p, static_cast<std::int32_t>(f.reversed));
+    put(p, static_cast<std::int32_t>(f.sense));
+    put(p, static_cast<std::uint64_t>(f.body));
+    put(p, static_cast<std::uint64_t>(f.triangles));
+    put(p, f.area_mm2);
+    for (const double* v : {f.centre_mm, f.origin_mm, f.axis}) {
+      for (int k = 0; k < 3; ++k) put(p, v[k]);
+    }
+    put(p, f.radius_mm);
+    put(p, f.minor_radius_mm);
+    put(p, f.half_angle_rad);
+  }
   return message('R', p);
 }
 
@@ -179,6 +294,7 @@ bool decode_cad_result(const char* payload, std::size_t size, std::size_t max_tr
   }
   if (body_triangles != triangle_count) return fail(why, "bodies whose triangles do not add up to the total");
   if (!in.take_text(&out->warnings)) return fail(why, "truncated warnings");
+  if (!decode_faces(in, out, why)) return false;
   if (in.left() != 0) return fail(why, std::to_string(in.left()) + " bytes after the end");
   return true;
 }

@@ -9,6 +9,9 @@
 //   'R' result     [unit: u32 n, n bytes][mm_per_unit: f64][vertices: u64 n, 3n f64][triangles: u64 n, 3n i32]
 //                  [bodies: u64 n, n x (kind i32, faces u64, triangles u64, failed u64, box 6 f64, volume f64,
 //                  flipped i32)][warnings: u32 n, n bytes]
+//                  [triangle faces: u64 n (= triangles), n i32][faces: u64 n, n x (surface i32, reversed i32,
+//                  sense i32, body u64, triangles u64, area f64, centre 3 f64, origin 3 f64, axis 3 f64, radius f64,
+//                  minor radius f64, half angle f64)]
 //   'E' error      [category: 1 byte, CadChildError][text: the rest]
 //   'S' crash note [signal: i32][VmPeak, kB: u64], written by the child's signal handler before it dies
 
@@ -41,11 +44,16 @@ struct CadWireResult {
   Mesh mesh;  // unwelded, as the plugin gave it
   std::vector<conform_cad_body> bodies;
   std::string warnings;  // '\n'-separated
+  std::vector<std::int32_t> triangle_faces;  // per triangle of `mesh`, the index into faces
+  std::vector<conform_cad_face> faces;
 };
 
 // Decodes an 'R' payload. Returns false with `why` set when it is inconsistent: sizes that do not add up to the
 // payload, a vertex index out of range, a coordinate that is not finite, an unknown body kind, per-body counts that
-// do not add up to the totals, or more triangles than `max_triangles`.
+// do not add up to the totals, or more triangles than `max_triangles`; for the faces: a triangle's face out of
+// range, an unknown surface, a body out of range, a number that is not finite, an analytic surface's axis that is not
+// a unit vector or a radius or angle out of its range, per-face triangle counts that do not match the triangles'
+// faces, per-body face counts that do not add up.
 bool decode_cad_result(const char* payload, std::size_t size, std::size_t max_triangles, CadWireResult* out,
                        std::string* why);
 

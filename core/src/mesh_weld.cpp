@@ -10,7 +10,8 @@
 
 namespace conform {
 
-MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& what) {
+MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& what,
+                                        std::vector<std::size_t>* kept_faces) {
   check_consistent(mesh, what.c_str());
   detail::VertexWelder welder(what, mesh.vertices.size());
   std::vector<std::int32_t> index(mesh.vertices.size());
@@ -26,7 +27,9 @@ MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& wha
   }
   result.merged_vertices = mesh.vertices.size() - result.mesh.vertices.size();
   result.mesh.faces.reserve(mesh.faces.size());
-  for (const Face& f : mesh.faces) {
+  if (kept_faces != nullptr) kept_faces->clear();
+  for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+    const Face& f = mesh.faces[i];
     const Face g = {index[static_cast<std::size_t>(f[0])], index[static_cast<std::size_t>(f[1])],
                     index[static_cast<std::size_t>(f[2])]};
     if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) {
@@ -34,6 +37,7 @@ MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& wha
       continue;
     }
     result.mesh.faces.push_back(g);
+    if (kept_faces != nullptr) kept_faces->push_back(i);
   }
   return result;
 }

@@ -156,7 +156,9 @@ SurfaceSample sample_surface(const TopoDS_Shape& shape, std::size_t count, doubl
   GProp_GProps total;
   BRepGProp::SurfaceProperties(shape, total);
   SurfaceSample out;
+  int face_index = -1;
   for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+    ++face_index;
     const TopoDS_Face& face = TopoDS::Face(e.Current());
     GProp_GProps props;
     BRepGProp::SurfaceProperties(face, props);
@@ -180,6 +182,7 @@ SurfaceSample sample_surface(const TopoDS_Shape& shape, std::size_t count, doubl
       out.points.push_back(Eigen::Vector3d(p.X(), p.Y(), p.Z()) + offset * normal);
       out.normals.push_back(normal);
       out.offset_mm.push_back(offset);
+      out.face.push_back(face_index);
       ++got;
     }
   }

@@ -48,6 +48,7 @@ struct SurfaceSample {
   std::vector<Eigen::Vector3d> points;   // on the exact surface, moved along the outward normal by offset_mm
   std::vector<Eigen::Vector3d> normals;  // outward unit normals of the exact surface
   std::vector<double> offset_mm;         // the signed normal offset of each point (outside positive)
+  std::vector<int> face;                 // the index of its face in the shape's face order (TopExp_Explorer)
 };
 
 // About `count` points over the shape's faces (in proportion to their areas), each offset by a Gaussian of

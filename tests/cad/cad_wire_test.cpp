@@ -19,6 +19,8 @@ namespace {
 struct Sample {
   std::vector<double> vertices{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
   std::vector<std::int32_t> triangles{0, 1, 2, 0, 2, 3};
+  std::vector<std::int32_t> triangle_faces{0, 0};
+  conform_cad_face face{};
   conform_cad_body body{};
   conform_cad_result result{};
   char warnings[32] = "body 1 is an open shell\n";
@@ -36,6 +38,15 @@ struct Sample {
     result.bodies = &body;
     result.body_count = 1;
     result.warnings = warnings;
+    face.surface = CONFORM_CAD_PLANE;
+    face.sense = 1;
+    face.triangles = 2;
+    face.area_mm2 = 1.0;
+    face.axis[2] = 1.0;
+    face.centre_mm[0] = face.centre_mm[1] = face.origin_mm[0] = face.origin_mm[1] = 0.5;
+    result.triangle_faces = triangle_faces.data();
+    result.faces = &face;
+    result.face_count = 1;
   }
   // The 'R' message's payload (without its header).
   std::string payload() const { return cad_result_message(result).substr(kCadWireHeader); }
@@ -61,6 +72,11 @@ TEST(CadWire, AResultDecodesToTheSameMesh) {
   EXPECT_EQ(out.bodies[0].kind, CONFORM_CAD_OPEN_SHELL);
   EXPECT_EQ(out.bodies[0].box_max_mm[1], 1.0);
   EXPECT_EQ(out.warnings, "body 1 is an open shell\n");
+  ASSERT_EQ(out.triangle_faces, std::vector<std::int32_t>({0, 0}));
+  ASSERT_EQ(out.faces.size(), 1u);
+  EXPECT_EQ(out.faces[0].surface, CONFORM_CAD_PLANE);
+  EXPECT_EQ(out.faces[0].axis[2], 1.0);
+  EXPECT_EQ(out.faces[0].centre_mm[1], 0.5);
 }
 
 bool refused(const std::string& payload, std::size_t max_triangles, const std::string& reason) {
@@ -98,6 +114,57 @@ TEST(CadWire, AResultThatDoesNotAddUpIsRefused) {
   const std::uint64_t count = std::uint64_t{1} << 60;
   std::memcpy(&huge[4 + 4 + 8], &count, sizeof count);  // after the unit ("INCH", length-prefixed) and the factor
   EXPECT_TRUE(refused(huge, 100, "more vertices than bytes"));
+}
+
+// The faces' section (issue 33): every way it can disagree with itself or with the mesh is refused.
+TEST(CadWire, FacesThatDoNotAddUpAreRefused) {
+  Sample s;
+  s.triangle_faces[1] = 1;  // a face that does not exist
+  EXPECT_TRUE(refused(s.payload(), 100, "triangle 1 of face 1 of 1"));
+  s.triangle_faces[1] = -1;
+  EXPECT_TRUE(refused(s.payload(), 100, "triangle 1 of face -1 of 1"));
+  s.triangle_faces[1] = 0;
+  s.face.surface = 11;
+  EXPECT_TRUE(refused(s.payload(), 100, "unknown surface type 11"));
+  s.face.surface = CONFORM_CAD_CYLINDER;
+  EXPECT_TRUE(refused(s.payload(), 100, "a radius that is not > 0"));
+  s.face.radius_mm = 5.0;
+  s.face.axis[2] = 2.0;
+  EXPECT_TRUE(refused(s.payload(), 100, "not a unit vector"));
+  s.face.axis[2] = 1.0;
+  s.face.sense = 0;
+  EXPECT_TRUE(refused(s.payload(), 100, "without an outside"));
+  s.face.sense = 2;
+  EXPECT_TRUE(refused(s.payload(), 100, "orientation out of range"));
+  s.face.sense = -1;
+  s.face.origin_mm[2] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(refused(s.payload(), 100, "not finite"));
+  s.face.origin_mm[2] = 0.0;
+  s.face.body = 1;
+  EXPECT_TRUE(refused(s.payload(), 100, "body 1 of 1"));
+  s.face.body = 0;
+  s.face.triangles = 1;
+  EXPECT_TRUE(refused(s.payload(), 100, "whose faces do not add up"));
+  s.face.triangles = 2;
+  s.face.surface = CONFORM_CAD_CONE;
+  s.face.half_angle_rad = 1.6;
+  EXPECT_TRUE(refused(s.payload(), 100, "cone angle"));
+  s.face.half_angle_rad = 0.3;
+  s.body.faces = 2;
+  EXPECT_TRUE(refused(s.payload(), 100, "do not add up to the bodies' faces"));
+  s.body.faces = 1;
+  s.result.triangle_faces = nullptr;  // sent without the triangles' faces
+  EXPECT_TRUE(refused(s.payload(), 100, "triangle faces for other than every triangle"));
+  s.result.triangle_faces = s.triangle_faces.data();
+  const std::string good = s.payload();
+  CadWireResult out;
+  std::string why;
+  ASSERT_TRUE(decode_cad_result(good.data(), good.size(), 100, &out, &why)) << why;
+  EXPECT_EQ(out.faces[0].sense, -1);
+  // Every truncation inside the faces' section (after the warnings) is refused too.
+  for (std::size_t n = good.size() - 150; n < good.size(); ++n) {
+    EXPECT_FALSE(decode_cad_result(good.data(), n, 100, &out, &why)) << n;
+  }
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 extern "C" {
 #endif
 
-#define CONFORM_CAD_ABI_VERSION 2
+#define CONFORM_CAD_ABI_VERSION 3
 
 enum conform_cad_format { CONFORM_CAD_STEP = 1, CONFORM_CAD_IGES = 2 };
 
@@ -19,6 +19,21 @@ enum conform_cad_body_kind {
   CONFORM_CAD_SOLID = 0,        // closed: its faces' orientation is checked (outside positive)
   CONFORM_CAD_OPEN_SHELL = 1,   // a shell outside any solid: the sign follows the faces' orientation in the file
   CONFORM_CAD_FREE_FACES = 2,   // faces outside any shell, gathered into one body
+};
+
+// The B-rep surface a face lies on (OpenCASCADE's GeomAbs_SurfaceType).
+enum conform_cad_surface {
+  CONFORM_CAD_PLANE = 0,
+  CONFORM_CAD_CYLINDER = 1,
+  CONFORM_CAD_CONE = 2,
+  CONFORM_CAD_SPHERE = 3,
+  CONFORM_CAD_TORUS = 4,
+  CONFORM_CAD_BEZIER = 5,
+  CONFORM_CAD_BSPLINE = 6,
+  CONFORM_CAD_REVOLUTION = 7,
+  CONFORM_CAD_EXTRUSION = 8,
+  CONFORM_CAD_OFFSET = 9,
+  CONFORM_CAD_OTHER_SURFACE = 10,
 };
 
 typedef void (*conform_cad_progress_fn)(void* context, const char* stage, double fraction);
@@ -47,6 +62,28 @@ typedef struct conform_cad_body {
   int flipped;               // 1: the solid's faces pointed inwards and were reversed
 } conform_cad_body;
 
+// One B-rep face, in the part frame (placements applied), mm. The analytic surfaces' nominal parameters; for the
+// others (bezier, bspline, ...) only the fields above `origin_mm`.
+typedef struct conform_cad_face {
+  int surface;               // conform_cad_surface
+  int reversed;              // 1: the face is reversed on its surface in the file (TopAbs_REVERSED)
+  // Where outside is, after the face's orientation and a solid's orientation check (flipped): plane +1 (axis is
+  // then the outward normal); cylinder, cone, sphere, torus +1 when outside is away from the axis (centre; the
+  // torus: its tube's centre circle), a boss or shaft, -1 towards it, a hole or bore; 0 for other surfaces.
+  int sense;
+  size_t body;               // index into the result's bodies
+  size_t triangles;          // its triangles (0: it failed to tessellate)
+  double area_mm2;
+  double centre_mm[3];       // area centroid of the face
+  double origin_mm[3];       // plane: centre_mm; cylinder: the axis point nearest centre_mm; cone: its apex;
+                             // sphere, torus: the centre
+  double axis[3];            // unit; plane: outward normal; cylinder, torus: the axis; cone: from the apex into the
+                             // cone (its radius grows along it); sphere: (0, 0, 1)
+  double radius_mm;          // cylinder, sphere; torus: the major radius; cone: 0
+  double minor_radius_mm;    // torus
+  double half_angle_rad;     // cone, in (0, pi/2)
+} conform_cad_face;
+
 typedef struct conform_cad_result {
   char* error;               // NULL on success; otherwise why (without the path), to be freed with the result
   char file_unit[32];        // the file's length unit as written in it ("MM", "M", "INCH", ...)
@@ -58,6 +95,9 @@ typedef struct conform_cad_result {
   conform_cad_body* bodies;
   size_t body_count;
   char* warnings;            // '\n'-separated sentences, or NULL
+  int32_t* triangle_faces;   // triangle_count: the index into faces of the face each triangle came from
+  conform_cad_face* faces;   // every face of every body, bodies in order (sum of bodies' faces)
+  size_t face_count;
 } conform_cad_result;
 
 // Returns 0 on success; otherwise non-zero with result->error set. Never throws. The result must be released with

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "conform/core/mesh.h"
 
@@ -18,8 +19,10 @@ struct MeshWeldResult {
 };
 
 // `what` names the mesh in errors. Normals, if any, are those of the kept vertices. Unchanged (merged_vertices == 0)
-// for a mesh without coincident vertices. Throws conform::Error for an inconsistent mesh.
-MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& what);
+// for a mesh without coincident vertices. Throws conform::Error for an inconsistent mesh. `kept_faces` (when not null)
+// receives, per face of the welded mesh, the index of the input face it is (faces keep their order).
+MeshWeldResult weld_coincident_vertices(const Mesh& mesh, const std::string& what,
+                                        std::vector<std::size_t>* kept_faces = nullptr);
 
 // The median length of the mesh's edges (each face's three, shared edges counted per face), mm; 0 without faces.
 double median_edge_length(const Mesh& mesh);
