@@ -8,6 +8,7 @@
 
 #include "cad_options.h"
 #include "command.h"
+#include "input_units.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/align.h"
@@ -107,9 +108,8 @@ class AlignCommand : public Command {
     c.add_option("--max-noise-ratio", options_.max_noise_ratio,
                  "Residuals more than this many times the scan's own noise: the pose is not trusted (exit 1); 0: "
                  "no check");
-    c.add_option("--units", units_,
-                 "Units of both input files and the pairs file (mm, cm, m, in); outputs are in "
-                 "mm");
+    add_unit_options(c, units_,
+                     "Units of both input files and the pairs file's columns (mm, cm, m, in); outputs are in mm");
     c.add_option("--out-transform", options_.out_transform_path,
                  "Write T_ref_scan (4x4 row-major text, mm) unless the pose is not to be trusted");
     c.add_option("--out-aligned", options_.out_aligned_path,
@@ -128,7 +128,8 @@ class AlignCommand : public Command {
   }
 
   int run() override {
-    options_.mm_per_unit = millimetres_per_unit(units_);
+    options_.scan_mm_per_unit = millimetres_per_unit(units_.of_scan());
+    options_.reference_mm_per_unit = millimetres_per_unit(units_.of_reference());
     set_align_method(method_, &options_);
     set_align_init(init_, &options_);
     options_.progress = stderr_progress(false);
@@ -212,7 +213,7 @@ class AlignCommand : public Command {
   AlignOptions options_;
   std::string method_;
   std::string init_ = "none";
-  std::string units_ = "mm";
+  InputUnits units_;
   std::string report_path_;
   bool json_ = false;
 };

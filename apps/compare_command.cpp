@@ -7,6 +7,7 @@
 
 #include "cad_options.h"
 #include "command.h"
+#include "input_units.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/compare.h"
 #include "conform/pipelines/compare_json.h"
@@ -47,7 +48,9 @@ class CompareCommand : public Command {
                "Measure to the reference mesh's flat triangles as they are, not to the smooth surface its vertices "
                "and normals describe (Phong; creases over 30 deg stay sharp), which removes the facets' chord error "
                "on curved surfaces");
-    c.add_option("--units", units_, "Units of the input files (mm, cm, m, in); results are in mm");
+    add_unit_options(c, units_,
+                     "Units of the input files (mm, cm, m, in; the transform's translation is in the reference's); "
+                     "results are in mm");
     add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
@@ -60,7 +63,8 @@ class CompareCommand : public Command {
   }
 
   int run() override {
-    options_.mm_per_unit = millimetres_per_unit(units_);
+    options_.scan_mm_per_unit = millimetres_per_unit(units_.of_scan());
+    options_.reference_mm_per_unit = millimetres_per_unit(units_.of_reference());
     if (*tolerance_) options_.tolerance_mm = tolerance_mm_;
     options_.colour = deviation_colour;
     const std::string title =
@@ -74,7 +78,7 @@ class CompareCommand : public Command {
     const CompareResult result = run_compare(options_);
     warn_all(result.warnings);
     if (!result.deviation.note.empty()) warn(result.deviation.note);
-    const nlohmann::json json = compare_json(options_, result, units_);
+    const nlohmann::json json = compare_json(options_, result, units_.of_scan(), units_.of_reference());
     if (!report_path_.empty()) write_report(report_path_, compare_report(options_, result, json, report_date()));
     if (json_) {
       print_json(json);
@@ -120,7 +124,7 @@ class CompareCommand : public Command {
   CompareOptions options_;
   CLI::Option* tolerance_ = nullptr;
   double tolerance_mm_ = 0.0;
-  std::string units_ = "mm";
+  InputUnits units_;
   std::string report_path_;
   bool json_ = false;
 };

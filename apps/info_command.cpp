@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
+#include "conform/core/units.h"
 #include "conform/pipelines/info.h"
 #include "json_values.h"
 #include "terminal.h"
@@ -21,6 +23,9 @@ class InfoCommand : public Command {
         .add_option("file", options_.path,
                     "Cloud, mesh or CAD file (.ply .stl .obj .pcd .xyz .txt .asc .csv; .step .stp .iges .igs)")
         ->required();
+    command.add_option("--units", units_,
+                       "Units of a mesh or cloud file (mm, cm, m, in); the box and area are shown in mm (a CAD file "
+                       "says its own)");
     add_cad_options(command, options_.cad);
     command.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
@@ -31,12 +36,14 @@ class InfoCommand : public Command {
   }
 
   int run() override {
+    options_.mm_per_unit = millimetres_per_unit(units_);
     options_.cad.progress = stderr_progress(json_);
     const InfoResult info = run_info(options_);
     warn_all(info.warnings);
     if (json_) {
       nlohmann::json j = {{"file", info.path},
                   {"format", info.format},
+                  {"units", info.cad.read ? info.cad.file_unit : units_},
                   {"points", info.points},
                   {"faces", info.faces},
                   {"has_normals", info.has_normals},
@@ -48,7 +55,7 @@ class InfoCommand : public Command {
       if (info.cad.read) j["cad"] = cad_json({info.cad}).front();
       print_json(j);
     } else {
-      print_text(info);
+      print_text(info, units_);
       if (info.cad.read) print_cad_bodies(info.cad);
     }
     if (info.points == 0) throw Error(info.path + ": holds no points");
@@ -60,9 +67,10 @@ class InfoCommand : public Command {
   }
 
  private:
-  static void print_text(const InfoResult& info) {
+  static void print_text(const InfoResult& info, const std::string& units) {
     std::printf("file         %s\n", info.path.c_str());
     std::printf("format       %s\n", info.format.c_str());
+    if (!info.cad.read) std::printf("units        %s\n", units.c_str());
     std::printf("points       %zu\n", info.points);
     std::printf("faces        %zu\n", info.faces);
     std::printf("normals      %s\n", info.has_normals ? "yes" : "no");
@@ -95,6 +103,7 @@ class InfoCommand : public Command {
   }
 
   InfoOptions options_;
+  std::string units_ = "mm";
   bool json_ = false;
 };
 

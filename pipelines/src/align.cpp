@@ -84,7 +84,7 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
     case AlignInit::kNone:
       break;
     case AlignInit::kPairs:
-      result.pairs = align_point_pairs(detail::read_point_pairs(options.pairs_path, options.mm_per_unit));
+      result.pairs = align_point_pairs(detail::read_point_pairs(options.pairs_path, options.scan_mm_per_unit, options.reference_mm_per_unit));
       result.T_start = result.pairs.T_ref_scan;
       result.start = "pairs";
       return;
@@ -198,8 +198,9 @@ bool AlignOptions::IsValid(std::string* error) const {
     why = "no scan file given";
   } else if (reference_path.empty()) {
     why = "no reference file given";
-  } else if (!(mm_per_unit > 0.0) || !std::isfinite(mm_per_unit)) {
-    why = "mm_per_unit must be finite and > 0";
+  } else if (!(scan_mm_per_unit > 0.0) || !std::isfinite(scan_mm_per_unit) || !(reference_mm_per_unit > 0.0) ||
+             !std::isfinite(reference_mm_per_unit)) {
+    why = "millimetres per unit of the scan and the reference must be finite and > 0";
   } else if (init == AlignInit::kPairs && pairs_path.empty()) {
     why = "init pairs needs a pairs file";
   } else if (!(max_distance_mm >= 0.0) || std::isnan(max_distance_mm)) {
@@ -247,11 +248,11 @@ AlignResult run_align(const AlignOptions& options) {
   }
 
   report(options.progress, "read scan", 0.0);
-  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.mm_per_unit, result.warnings,
+  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.scan_mm_per_unit, result.warnings,
                                                     options.cad, &result.cad_inputs);
   report(options.progress, "read scan", 1.0);
   report(options.progress, "read reference", 0.0);
-  Mesh reference_mesh = detail::read_for_alignment(options.reference_path, "reference", options.mm_per_unit,
+  Mesh reference_mesh = detail::read_for_alignment(options.reference_path, "reference", options.reference_mm_per_unit,
                                                    result.warnings, options.cad, &result.cad_inputs);
   report(options.progress, "read reference", 1.0);
   if (options.max_size_ratio > 0.0) {

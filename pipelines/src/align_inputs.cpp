@@ -112,15 +112,14 @@ void check_sizes(const Mesh& scan, const Mesh& reference, const std::string& sca
   if (!(s > 0.0) || !(r > 0.0)) return;
   const double ratio = std::max(s / r, r / s);
   if (ratio <= max_ratio) return;
-  const std::string larger = s > r ? scan_path : reference_path;
   const std::string guess = likely_units(ratio);
   throw Error("the scan (" + scan_path + ", " + std::to_string(s) + " across) and the reference (" + reference_path +
               ", " + std::to_string(r) + " across) differ in size by a factor of " + std::to_string(ratio) +
-              (guess.empty() ? "" : ", like " + guess) + ": are they in different units? Convert one of them (e.g. " +
-              larger + "); --units scales both inputs to millimetres alike");
+              (guess.empty() ? "" : ", like " + guess) + ": are they in different units? Give each its own (--scan-units, --reference-units; --units sets "
+              "both)");
 }
 
-std::vector<PointPair> read_point_pairs(const std::string& path, double mm_per_unit) {
+std::vector<PointPair> read_point_pairs(const std::string& path, double scan_mm_per_unit, double reference_mm_per_unit) {
   std::istringstream in(read_input_file(path));
   std::vector<PointPair> pairs;
   std::string line;
@@ -134,7 +133,8 @@ std::vector<PointPair> read_point_pairs(const std::string& path, double mm_per_u
       throw Error(where + std::to_string(v.size()) + " numbers; a pair is 6: scan x y z, then reference x y z");
     }
     if (pairs.size() == kMaxPairs) throw Error(path + ": more than a million point pairs");
-    pairs.push_back({Eigen::Vector3d(v[0], v[1], v[2]) * mm_per_unit, Eigen::Vector3d(v[3], v[4], v[5]) * mm_per_unit});
+    pairs.push_back(
+        {Eigen::Vector3d(v[0], v[1], v[2]) * scan_mm_per_unit, Eigen::Vector3d(v[3], v[4], v[5]) * reference_mm_per_unit});
   }
   if (in.bad()) throw Error(path + ": read error");
   if (pairs.size() < 3) {

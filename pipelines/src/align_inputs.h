@@ -27,7 +27,8 @@ std::vector<Eigen::Vector3d> unique_points(const std::vector<Eigen::Vector3d>& p
 void check_sizes(const Mesh& scan, const Mesh& reference, const std::string& scan_path,
                  const std::string& reference_path, double max_ratio);
 
-// The pairs file (align.h), coordinates times mm_per_unit. Throws conform::Error naming the file and the line.
-std::vector<PointPair> read_point_pairs(const std::string& path, double mm_per_unit);
+// The pairs file (align.h), the scan's coordinates times scan_mm_per_unit, the reference's times
+// reference_mm_per_unit. Throws conform::Error naming the file and the line.
+std::vector<PointPair> read_point_pairs(const std::string& path, double scan_mm_per_unit, double reference_mm_per_unit);
 
 }  // namespace conform::detail

@@ -124,7 +124,8 @@ html::Page align_report(const AlignOptions& options, const AlignResult& r, const
                   {"pose_tolerance_mm", r.verdict.pose_tolerance_mm},
                   {"tolerance_mm", options.tolerance_mm},
                   {"max_noise_ratio", options.max_noise_ratio},
-                  {"mm_per_unit", options.mm_per_unit}};
+                  {"scan_mm_per_unit", options.scan_mm_per_unit},
+                  {"reference_mm_per_unit", options.reference_mm_per_unit}};
   page.date = date;
   page.verdict = {level_of(r.verdict.trust),
                   "trust " + std::string(to_string(r.verdict.trust)) + ": " + r.verdict.summary};

@@ -27,7 +27,7 @@ inline void keep_cad_report(const ReadReport& report, std::vector<CadReport>& ou
 inline bool cad_keeps_its_units(const ReadReport& report, double mm_per_unit, std::vector<std::string>& warnings) {
   if (!report.cad.read) return false;
   if (mm_per_unit != 1.0) {
-    warnings.push_back(report.cad.path + ": --units does not apply to a CAD file; its own unit (" +
+    warnings.push_back(report.cad.path + ": --units (--scan-units, --reference-units) does not apply to a CAD file; its own unit (" +
                        report.cad.file_unit + ") was converted to mm");
   }
   return true;

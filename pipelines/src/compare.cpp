@@ -25,7 +25,10 @@ bool wrong_extension(const std::string& path, const char* extension) {
 std::string invalid_reason(const CompareOptions& o) {
   if (o.scan_path.empty()) return "no scan: give the scan file (--scan)";
   if (o.reference_path.empty()) return "no reference: give the reference file (--reference)";
-  if (!(std::isfinite(o.mm_per_unit) && o.mm_per_unit > 0.0)) return "millimetres per unit must be finite and > 0";
+  if (!(std::isfinite(o.scan_mm_per_unit) && o.scan_mm_per_unit > 0.0 && std::isfinite(o.reference_mm_per_unit) &&
+        o.reference_mm_per_unit > 0.0)) {
+    return "millimetres per unit of the scan and the reference must be finite and > 0";
+  }
   if (o.tolerance_mm && !(std::isfinite(*o.tolerance_mm) && *o.tolerance_mm > 0.0)) {
     return "--tolerance must be > 0 mm, not " + std::to_string(*o.tolerance_mm);
   }
@@ -38,9 +41,8 @@ std::string invalid_reason(const CompareOptions& o) {
   return "";
 }
 
-Mesh read_input(const std::string& path, const CompareOptions& options, const char* stage,
+Mesh read_input(const std::string& path, double mm_per_unit, const CompareOptions& options, const char* stage,
                 CompareResult& result) {
-  const double mm_per_unit = options.mm_per_unit;
   const ProgressFn& progress = options.progress;
   std::vector<std::string>& warnings = result.warnings;
   report(progress, stage, 0.0);
@@ -67,7 +69,7 @@ void add_doubts(const Mesh& scan, const Mesh& reference, const CompareOptions& o
     std::snprintf(text, sizeof(text), "%.4g mm across, the reference %.4g mm: a factor of %.0f", scan_size,
                   reference_size, ratio);
     result.warnings.push_back("the scan is " + std::string(text) +
-                              ". Are both in the same units? (--units applies to both)");
+                              ". Are both in the units given? (--units sets both; --scan-units and --reference-units one each)");
   }
   if (result.statistics.count > 0 && std::abs(result.statistics.p50_mm) > 0.25 * reference_size) {
     result.warnings.push_back(
@@ -115,13 +117,13 @@ CompareResult run_compare(const CompareOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw Error(why);
   CompareResult result;
-  Mesh scan = read_input(options.scan_path, options, "read scan", result);
+  Mesh scan = read_input(options.scan_path, options.scan_mm_per_unit, options, "read scan", result);
   if (!options.transform_path.empty()) {
     result.T_ref_scan = read_transform(options.transform_path);
-    result.T_ref_scan.translation() *= options.mm_per_unit;
+    result.T_ref_scan.translation() *= options.reference_mm_per_unit;
     scan = transformed(scan, result.T_ref_scan);
   }
-  Mesh reference = read_input(options.reference_path, options, "read reference", result);
+  Mesh reference = read_input(options.reference_path, options.reference_mm_per_unit, options, "read reference", result);
   result.scan_points = scan.vertices.size();
   result.reference_points = reference.vertices.size();
   result.reference_faces = reference.faces.size();

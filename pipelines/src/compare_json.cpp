@@ -6,13 +6,16 @@
 
 namespace conform {
 
-nlohmann::json compare_json(const CompareOptions& options, const CompareResult& r, const std::string& units) {
+nlohmann::json compare_json(const CompareOptions& options, const CompareResult& r, const std::string& scan_units,
+                            const std::string& reference_units) {
   const DeviationStatistics& s = r.statistics;
   nlohmann::json j = {{"scan", options.scan_path},
                       {"reference", options.reference_path},
                       {"transform", json_path_or_null(options.transform_path)},
                       {"T_ref_scan", json_of(r.T_ref_scan)},
-                      {"units", units},
+                      {"units", scan_units == reference_units ? nlohmann::json(scan_units) : nlohmann::json()},
+                      {"scan_units", scan_units},
+                      {"reference_units", reference_units},
                       {"signed", r.deviation.is_signed()},
                       {"note", json_path_or_null(r.deviation.note)},
                       {"points", r.scan_points},

@@ -68,7 +68,8 @@ def align(scan, reference, **options):
     scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options as the CLI's flags:
     method ("" automatic, point-to-point, point-to-plane, point-to-surface, plane-to-plane), init (none, pca, fpfh,
     pairs:FILE), max_distance, overlap, max_iterations, free_tolerance_mm, free_tolerance_deg, pose_tolerance_mm,
-    tolerance, max_noise_ratio, units, out_transform, out_aligned, report, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
+    tolerance, max_noise_ratio, units (both inputs), scan_units, reference_units (one input each, over units),
+    out_transform, out_aligned, report, progress. Not converged or not trusted (CLI exit 1): `converged` is False.
     """
     return _result("align", _conform.align(scan, reference, **options))
 
@@ -77,7 +78,8 @@ def compare(scan, reference, **options):
     """`conform compare`: signed deviation of each scan point from the reference surface (mm), statistics.
 
     scan, reference: path, (N, 3) array, (vertices, faces) pair or conform.Geometry. Options: transform (path or
-    (4, 4) T_ref_scan), tolerance, out_deviation, out_histogram, units, report, progress (callable(stage, fraction)).
+    (4, 4) T_ref_scan; its translation in the reference's units), tolerance, out_deviation, out_histogram, units (both
+    inputs), scan_units, reference_units (one input each, over units), report, progress (callable(stage, fraction)).
     Arrays: deviation_mm (N,), closest_mm (N, 3), NaN where unmatched.
     """
     return _result("compare", _conform.compare(scan, reference, **options))

@@ -54,6 +54,12 @@ std::shared_ptr<Geometry> job_read(const py::object& path_value, const std::stri
   return geometry;
 }
 
+// One input's units: its own when given, else the job's `units` (the CLI's --scan-units / --reference-units over
+// --units).
+const std::string& units_of(const std::optional<std::string>& own, const std::string& units) {
+  return own ? *own : units;
+}
+
 py::array rows_view(const py::object& self, std::vector<Eigen::Vector3d>& rows) {
   const py::ssize_t n = static_cast<py::ssize_t>(rows.size());
   return py::array_t<double>({n, py::ssize_t{3}}, {py::ssize_t{sizeof(Eigen::Vector3d)}, py::ssize_t{sizeof(double)}},
@@ -68,7 +74,8 @@ py::array faces_view(const py::object& self, std::vector<Face>& faces) {
 
 py::tuple job_compare(const py::object& scan, const py::object& reference, const py::object& transform,
                       std::optional<double> tolerance, const py::object& out_deviation, const py::object& out_histogram,
-                      const std::string& units, bool flat_facets, const py::object& cad_deflection,
+                      const std::string& units, const std::optional<std::string>& scan_units,
+                      const std::optional<std::string>& reference_units, bool flat_facets, const py::object& cad_deflection,
                       const py::object& cad_angle_deg, const py::object& cad_save_mesh, const py::object& report,
                       const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
@@ -79,7 +86,8 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   options.scan_path = inputs.geometry(scan, "scan");
   options.reference_path = inputs.geometry(reference, "reference");
   options.transform_path = inputs.transform(transform, "transform");
-  options.mm_per_unit = millimetres_per_unit(units);
+  options.scan_mm_per_unit = millimetres_per_unit(units_of(scan_units, units));
+  options.reference_mm_per_unit = millimetres_per_unit(units_of(reference_units, units));
   options.tolerance_mm = tolerance;
   options.out_deviation_path = path_of(out_deviation);
   options.out_histogram_path = path_of(out_histogram);
@@ -95,7 +103,7 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
   CallFiles files({options.scan_path, options.reference_path, options.transform_path},
                   {options.out_deviation_path, options.out_histogram_path, report_path, options.cad.save_mesh_path});
   CompareResult result = released(progress, [&] { return run_compare(options); });
-  const nlohmann::json j = compare_json(options, result, units);
+  const nlohmann::json j = compare_json(options, result, units_of(scan_units, units), units_of(reference_units, units));
   if (!report_path.empty()) write_report(report_path, compare_report(options, result, j, ""));
   files.commit();
   py::dict arrays;
@@ -112,7 +120,8 @@ py::tuple job_compare(const py::object& scan, const py::object& reference, const
 py::tuple job_align(const py::object& scan, const py::object& reference, const std::string& method,
                     const std::string& init, double max_distance, double overlap, int max_iterations,
                     double free_tolerance_mm, double free_tolerance_deg, double pose_tolerance_mm, double tolerance,
-                    double max_noise_ratio, const std::string& units, const py::object& out_transform,
+                    double max_noise_ratio, const std::string& units, const std::optional<std::string>& scan_units,
+                    const std::optional<std::string>& reference_units, const py::object& out_transform,
                     const py::object& out_aligned, const py::object& cad_deflection, const py::object& cad_angle_deg,
                     const py::object& cad_save_mesh, const py::object& report, const py::object& progress_callback) {
   const std::string report_path = report_path_of(report);
@@ -121,7 +130,8 @@ py::tuple job_align(const py::object& scan, const py::object& reference, const s
   set_cad_options(cad_deflection, cad_angle_deg, cad_save_mesh, options.cad);
   options.scan_path = inputs.geometry(scan, "scan");
   options.reference_path = inputs.geometry(reference, "reference");
-  options.mm_per_unit = millimetres_per_unit(units);
+  options.scan_mm_per_unit = millimetres_per_unit(units_of(scan_units, units));
+  options.reference_mm_per_unit = millimetres_per_unit(units_of(reference_units, units));
   set_align_method(method, &options);
   set_align_init(init, &options);
   options.max_distance_mm = max_distance;
@@ -408,7 +418,8 @@ PYBIND11_MODULE(_conform, m) {
         arg("cad_angle_deg") = py::none());
   m.def("compare", &job_compare, arg("scan"), arg("reference"), py::kw_only(), arg("transform") = py::none(),
         arg("tolerance") = CompareOptions{}.tolerance_mm, arg("out_deviation") = py::none(),
-        arg("out_histogram") = py::none(), arg("units") = "mm", arg("flat_facets") = false,
+        arg("out_histogram") = py::none(), arg("units") = "mm", arg("scan_units") = py::none(),
+        arg("reference_units") = py::none(), arg("flat_facets") = false,
         arg("cad_deflection") = py::none(), arg("cad_angle_deg") = py::none(), arg("cad_save_mesh") = py::none(),
         arg("report") = py::none(), arg("progress") = py::none());
   const AlignOptions align;
@@ -417,7 +428,7 @@ PYBIND11_MODULE(_conform, m) {
         arg("max_iterations") = align.max_iterations, arg("free_tolerance_mm") = align.free_tolerance_mm,
         arg("free_tolerance_deg") = align.free_tolerance_deg, arg("pose_tolerance_mm") = align.pose_tolerance_mm,
         arg("tolerance") = align.tolerance_mm, arg("max_noise_ratio") = align.max_noise_ratio, arg("units") = "mm",
-        arg("out_transform") = py::none(), arg("out_aligned") = py::none(), arg("cad_deflection") = py::none(),
+        arg("scan_units") = py::none(), arg("reference_units") = py::none(), arg("out_transform") = py::none(), arg("out_aligned") = py::none(), arg("cad_deflection") = py::none(),
         arg("cad_angle_deg") = py::none(), arg("cad_save_mesh") = py::none(), arg("report") = py::none(),
         arg("progress") = py::none());
   const ProgramOptions program;

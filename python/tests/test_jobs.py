@@ -48,6 +48,22 @@ def test_compare_in_memory_inputs_give_the_file_numbers(tubes):
             assert d[key] == by_path[key], key
 
 
+def test_compare_takes_each_inputs_units_as_the_cli(tubes, tmp_path):
+    """A scan in metres against a reference in mm: scan_units as --scan-units, the same deviations as all in mm."""
+    scan_m = tmp_path / "scan_m.xyz"
+    np.savetxt(scan_m, conform.read(tubes["scan"]).points / 1000.0, fmt="%.12g")
+    expected = cli_json("compare", "--scan", scan_m, "--reference", tubes["nominal"], "--scan-units", "m",
+                        "--transform", tubes["transform"])
+    r = conform.compare(str(scan_m), tubes["nominal"], scan_units="m", transform=tubes["transform"])
+    assert_same(r.to_dict(), expected)
+    assert r.scan_units == "m" and r.reference_units == "mm" and r.units is None
+    in_mm = conform.compare(tubes["scan"], tubes["nominal"], transform=tubes["transform"])
+    assert r.rms_mm == pytest.approx(in_mm.rms_mm, rel=1e-6)
+    # units sets both, reference_units overrides it for the reference.
+    both = conform.compare(str(scan_m), tubes["nominal"], units="m", reference_units="mm", transform=tubes["transform"])
+    assert both.rms_mm == pytest.approx(r.rms_mm, rel=1e-12)
+
+
 def test_read_gives_views(tubes):
     g = conform.read(tubes["nominal"])
     assert g.points.shape == (len(g), 3) and g.faces.shape[1] == 3 and g.faces.dtype == np.int32

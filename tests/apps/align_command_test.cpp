@@ -290,5 +290,43 @@ TEST(AlignCommand, UnitsScaleBothInputsToMillimetres) {
   EXPECT_LT((T.translation() - truth_pose().translation()).norm(), 0.02);  // mm, not m
 }
 
+// A scan in metres against a reference in millimetres (a range sensor against CAD): each input its own units. The
+// pairs file's scan columns follow the scan's units, its reference columns the reference's.
+TEST(AlignCommand, EachInputHasItsOwnUnits) {
+  test::TempDir dir;
+  write_points(dir.file("reference.ply"), stepped_block(2.0, 0.5), Eigen::Isometry3d::Identity(), 1.0);
+  write_points(dir.file("scan.ply"), stepped_block(3.0, 1.3), truth_pose().inverse(), 0.001);
+  auto r = align({"--scan", dir.file("scan.ply"), "--reference", dir.file("reference.ply"), "--scan-units", "m",
+                  "--out-transform", dir.file("T.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT((read_transform(dir.file("T.txt")).translation() - truth_pose().translation()).norm(), 0.02);
+  // The same with --units m and the reference's own mm: --reference-units overrides --units for it.
+  r = align({"--scan", dir.file("scan.ply"), "--reference", dir.file("reference.ply"), "--units", "m",
+             "--reference-units", "mm", "--out-transform", dir.file("T2.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT((read_transform(dir.file("T2.txt")).translation() - truth_pose().translation()).norm(), 0.02);
+  // Without them the sizes differ a thousandfold: refused, naming the options.
+  r = align({"--scan", dir.file("scan.ply"), "--reference", dir.file("reference.ply")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--scan-units"), std::string::npos) << r.err;
+  // Pairs: scan columns in m, reference columns in mm.
+  std::string pairs;
+  const std::vector<Eigen::Vector3d> block = stepped_block(3.0, 1.3);
+  for (std::size_t i = 0; i < block.size(); i += block.size() / 5) {
+    const Eigen::Vector3d s = truth_pose().inverse() * block[i] * 0.001;
+    const Eigen::Vector3d q = block[i];
+    pairs += std::to_string(s.x()) + " " + std::to_string(s.y()) + " " + std::to_string(s.z()) + " " +
+             std::to_string(q.x()) + " " + std::to_string(q.y()) + " " + std::to_string(q.z()) + "\n";
+  }
+  test::write_bytes(dir.file("pairs.txt"), pairs);
+  r = align({"--scan", dir.file("scan.ply"), "--reference", dir.file("reference.ply"), "--scan-units", "m", "--init",
+             "pairs:" + dir.file("pairs.txt"), "--out-transform", dir.file("T3.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT((read_transform(dir.file("T3.txt")).translation() - truth_pose().translation()).norm(), 0.02);
+  r = align({"--scan", dir.file("scan.ply"), "--reference", dir.file("reference.ply"), "--scan-units", "furlong"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("furlong"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace conform

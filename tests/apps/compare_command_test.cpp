@@ -128,6 +128,34 @@ TEST_F(CompareCommand, UnitsScaleEveryInput) {
   EXPECT_EQ(cm["units"], "cm");
 }
 
+// The scan in metres, the reference and the transform's translation in millimetres: the same deviations as all in mm.
+TEST_F(CompareCommand, EachInputHasItsOwnUnits) {
+  const std::string transform = dir_.file("T_ref_scan.txt");
+  test::write_bytes(transform, "1 0 0 0.5\n0 1 0 0\n0 0 1 0\n0 0 0 1\n");
+  const auto mm = nlohmann::json::parse(
+      compare({"--scan", reference_, "--reference", reference_, "--transform", transform, "--json"}).out);
+  const test::PlyVertexProperties p = test::read_ply_vertex_properties(test::read_bytes(reference_));
+  ASSERT_EQ(p.error, "");
+  std::string metres;
+  for (std::size_t i = 0; i < p.values.at("x").size(); ++i) {
+    char line[120];
+    std::snprintf(line, sizeof line, "%.12g %.12g %.12g\n", p.values.at("x")[i] / 1000.0, p.values.at("y")[i] / 1000.0,
+                  p.values.at("z")[i] / 1000.0);
+    metres += line;
+  }
+  test::write_bytes(dir_.file("scan_m.xyz"), metres);
+  const auto r = compare({"--scan", dir_.file("scan_m.xyz"), "--reference", reference_, "--scan-units", "m",
+                          "--transform", transform, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(m["p50_mm"].get<double>(), mm["p50_mm"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["max_mm"].get<double>(), mm["max_mm"].get<double>(), 1e-6);
+  EXPECT_EQ(m["scan_units"], "m");
+  EXPECT_EQ(m["reference_units"], "mm");
+  EXPECT_TRUE(m["units"].is_null());
+  EXPECT_EQ(mm["units"], "mm");
+}
+
 TEST_F(CompareCommand, ACloudReferenceGivesUnsignedDeviationsAndSaysSo) {
   const std::string cloud = dir_.file("nominal.xyz");
   ASSERT_EQ(conform({"generate", "tube", "--quiet", "--radius", "100", "--length", "80", "--arc-deg", "60", "--edge",

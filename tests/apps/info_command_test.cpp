@@ -92,6 +92,25 @@ TEST(InfoCommand, DescribesAMeshWithFacesAndArea) {
   EXPECT_DOUBLE_EQ(j["surface_area_mm2"].get<double>(), 100.0);
 }
 
+// --units m: a range sensor's file in metres, shown in millimetres.
+TEST(InfoCommand, UnitsScaleTheBoxAndArea) {
+  test::TempDir dir;
+  const std::string path = dir.file("square.obj");
+  test::write_bytes(path, "v 0 0 0\nv 0.01 0 0\nv 0.01 0.02 0\nv 0 0.02 0\nf 1 2 3 4\n");
+  const auto r = info({path, "--units", "m", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["units"], "m");
+  EXPECT_NEAR(j["bounding_box_size_mm"][1].get<double>(), 20.0, 1e-12);
+  EXPECT_NEAR(j["surface_area_mm2"].get<double>(), 200.0, 1e-9);
+  const auto text = info({path, "--units", "m"});
+  EXPECT_NE(text.out.find("units        m"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("box size mm  10.0000 20.0000 0.0000"), std::string::npos) << text.out;
+  const auto bad = info({path, "--units", "furlong"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("furlong"), std::string::npos) << bad.err;
+}
+
 TEST(InfoCommand, CountsNonFinitePointsAndStillRefusesTheFile) {
   test::TempDir dir;
   const std::string path = dir.file("with_nan.csv");

@@ -44,7 +44,7 @@ TEST(AlignPipeline, RecoversTheRealSmallGicpPairInMetres) {
   AlignOptions options;
   options.scan_path = data + "source.ply";
   options.reference_path = data + "target.ply";
-  options.mm_per_unit = 1000.0;  // --units m
+  options.scan_mm_per_unit = options.reference_mm_per_unit = 1000.0;  // --units m
   options.method = IcpMethod::kPointToPlane;
   options.max_distance_mm = 1000.0;
   // 70k LiDAR points, most of them within 5 m of the sensor: 5 cm voxels even out the density (and the time).

@@ -45,7 +45,10 @@ IcpMethod default_align_method(bool reference_has_faces);
 struct AlignOptions {
   std::string scan_path;       // cloud or mesh, any format read_geometry reads
   std::string reference_path;  // mesh (point-to-surface possible) or cloud; or CAD (.step .stp .iges .igs)
-  double mm_per_unit = 1.0;    // millimetres per unit of both files and of the pairs file (1000 for metres); not CAD
+  // Millimetres per unit of the scan file and of the pairs file's scan columns (1000 for metres), and of the
+  // reference and the pairs file's reference columns; a CAD file keeps the units written in it.
+  double scan_mm_per_unit = 1.0;
+  double reference_mm_per_unit = 1.0;
   CadReadOptions cad;          // a CAD reference: its tessellation (core/cad.h)
 
   std::optional<IcpMethod> method;  // empty: default_align_method(the reference has faces)

@@ -37,7 +37,10 @@ struct CompareOptions {
   std::string reference_path;  // mesh or CAD, .step .stp .iges .igs (signed deviation), or cloud (unsigned)
   CadReadOptions cad;          // a CAD reference: its tessellation (core/cad.h)
   std::string transform_path;  // T_ref_scan (4x4 text) applied to the scan; empty: the scan is in the reference frame
-  double mm_per_unit = 1.0;    // millimetres per unit of every input (coordinates, the transform's translation); not CAD
+  // Millimetres per unit of the scan, and of the reference and the transform's translation (a place in the
+  // reference's frame); a CAD file keeps the units written in it.
+  double scan_mm_per_unit = 1.0;
+  double reference_mm_per_unit = 1.0;
   std::optional<double> tolerance_mm;  // the band +-t for the in/above/below shares; none by default
   double max_distance_mm = std::numeric_limits<double>::infinity();  // farther scan points are unmatched (NaN)
   // True: distances to the reference's flat triangles as they are; false: to the smooth surface its vertices and

@@ -12,7 +12,8 @@ namespace conform {
 
 struct InfoOptions {
   std::string path;
-  CadReadOptions cad;  // a CAD file: the tessellation it would be read with
+  double mm_per_unit = 1.0;  // millimetres per unit of a mesh or cloud file (1000 for metres); a CAD file says its own
+  CadReadOptions cad;        // a CAD file: the tessellation it would be read with
 };
 
 struct InfoResult {
