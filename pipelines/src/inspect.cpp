@@ -1,0 +1,235 @@
+#include "conform/pipelines/inspect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "cad_inputs.h"
+#include "conform/core/csv.h"
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/io.h"
+#include "conform/core/normals.h"
+#include "conform/core/output_set.h"
+#include "conform/core/transform_io.h"
+#include "conform/core/triangle_index.h"
+#include "conform/core/units.h"
+#include "conform/evaluation/deviation.h"
+#include "conform/pipelines/align.h"
+#include "conform/registration/surface_noise.h"
+#include "inspect_features.h"
+#include "inspect_faces_csv.h"
+
+namespace conform {
+
+namespace {
+
+std::string invalid_reason(const InspectOptions& o) {
+  if (o.scan_path.empty()) return "no scan: give the scan file (--scan)";
+  if (o.reference_path.empty()) return "no reference: give the CAD file (--reference)";
+  if (!is_cad_file(o.reference_path)) {
+    return "--reference " + o.reference_path + ": inspect needs the CAD's faces, a .step .stp .iges or .igs file";
+  }
+  if (o.best_fit && !o.transform_path.empty()) return "--transform and --align best-fit exclude each other";
+  // align's unit options are being split into the scan's and the reference's; until then a scan in other units is
+  // aligned with `conform align` and passed with --transform.
+  if (o.best_fit && o.mm_per_unit != 1.0) return "--align best-fit needs a scan in mm (align it with conform align)";
+  if (!(std::isfinite(o.mm_per_unit) && o.mm_per_unit > 0.0)) return "millimetres per unit must be finite and > 0";
+  if (!(std::isfinite(o.max_distance_mm) && o.max_distance_mm >= 0.0)) {
+    return "--max-distance must be >= 0 mm (0: automatic)";
+  }
+  if (!(o.max_normal_angle_rad > 0.0 && o.max_normal_angle_rad <= 1.5707963267948966)) {
+    return "--max-normal-angle-deg must be in (0, 90]";
+  }
+  if (o.normal_neighbours < 5) return "the normals' neighbours must be >= 5";
+  if (!(o.form_trim >= 0.0 && o.form_trim < 0.5)) return "--form-trim must be in [0, 0.5)";
+  if (o.min_fit_points < 6) return "at least 6 points are needed to fit a feature";
+  if (!o.out_faces_path.empty() && file_extension(o.out_faces_path) != ".csv") {
+    return "--out-faces " + o.out_faces_path + ": must be .csv";
+  }
+  return "";
+}
+
+Mesh read_scan(const InspectOptions& options, InspectResult& result) {
+  report(options.progress, "read scan", 0.0);
+  ReadReport read;
+  Mesh scan = read_geometry(options.scan_path, detail::read_options(NonFinitePolicy::kReject, options.cad), &read);
+  result.warnings.insert(result.warnings.end(), read.warnings.begin(), read.warnings.end());
+  if (scan.vertices.size() < 3) throw Error(options.scan_path + ": holds fewer than 3 points");
+  detail::keep_cad_report(read, result.cad_inputs);
+  if (options.mm_per_unit != 1.0 && !detail::cad_keeps_its_units(read, options.mm_per_unit, result.warnings)) {
+    scale_in_place(scan, options.mm_per_unit);
+  }
+  report(options.progress, "read scan", 1.0);
+  return scan;
+}
+
+// T_ref_scan from --align best-fit; false (with the verdict in result) when align does not trust its pose.
+bool best_fit(const InspectOptions& options, InspectResult& result) {
+  report(options.progress, "align", 0.0);
+  AlignOptions align;
+  align.scan_path = options.scan_path;
+  align.reference_path = options.reference_path;
+  align.cad = options.cad;
+  align.cad.save_mesh_path.clear();
+  const AlignResult aligned = run_align(align);
+  result.align_trust = to_string(aligned.verdict.trust);
+  result.align_summary = aligned.verdict.summary;
+  report(options.progress, "align", 1.0);
+  if (aligned.verdict.trust == AlignTrust::kNo) return false;
+  result.T_ref_scan = aligned.icp.T_ref_scan;
+  return true;
+}
+
+// The face normal at p: the analytic surface's, or the nearest triangle's for other faces.
+Eigen::Vector3d face_normal(const CadFaces& cad, const CadFace& face, const SurfacePoint& s, const Eigen::Vector3d& p) {
+  if (is_analytic(face.type)) return analytic_outward_normal(face, p);
+  const Face& t = cad.mesh.faces[static_cast<std::size_t>(s.face)];
+  const Eigen::Vector3d& a = cad.mesh.vertices[static_cast<std::size_t>(t[0])];
+  const Eigen::Vector3d& b = cad.mesh.vertices[static_cast<std::size_t>(t[1])];
+  const Eigen::Vector3d& c = cad.mesh.vertices[static_cast<std::size_t>(t[2])];
+  return (b - a).cross(c - a).normalized();
+}
+
+// Each point's face id (0: none) by its nearest triangle, within the distance cut and the normal check.
+void assign_points(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                   const CadFaces& cad, const InspectOptions& options, InspectResult& result) {
+  report(options.progress, "assign", 0.0);
+  const TriangleIndex index(cad.mesh);
+  const double min_cosine = std::cos(options.max_normal_angle_rad);
+  result.point_face.assign(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SurfacePoint s = index.closest(points[i], result.max_distance_mm);
+    if (!s.found()) {
+      ++result.beyond_distance;
+      continue;
+    }
+    const auto f = static_cast<std::size_t>(cad.triangle_face[static_cast<std::size_t>(s.face)]);
+    const Eigen::Vector3d n = face_normal(cad, cad.faces[f], s, points[i]);
+    if (!(std::abs(n.dot(normals[i])) >= min_cosine)) {
+      ++result.normal_mismatch;
+      continue;
+    }
+    result.point_face[i] = f + 1;
+    ++result.assigned;
+  }
+  report(options.progress, "assign", 1.0);
+}
+
+// Deviations of the points on faces without an analytic surface: to the tessellation's smooth surface.
+std::vector<double> mesh_deviations(const std::vector<Eigen::Vector3d>& points, const CadFaces& cad,
+                                    const InspectResult& result) {
+  std::vector<Eigen::Vector3d> off_analytic;
+  std::vector<std::size_t> which;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::size_t id = result.point_face[i];
+    if (id != 0 && !is_analytic(cad.faces[id - 1].type)) {
+      off_analytic.push_back(points[i]);
+      which.push_back(i);
+    }
+  }
+  std::vector<double> out(points.size(), std::numeric_limits<double>::quiet_NaN());
+  if (off_analytic.empty()) return out;
+  DeviationOptions deviation;
+  deviation.smooth_surface = true;
+  const DeviationResult d = compute_deviation(off_analytic, cad.mesh, deviation);
+  for (std::size_t k = 0; k < which.size(); ++k) out[which[k]] = d.deviation_mm[k];
+  return out;
+}
+
+void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                   const CadFaces& cad, const InspectOptions& options, InspectResult& result) {
+  report(options.progress, "faces", 0.0);
+  const std::vector<double> to_mesh = mesh_deviations(points, cad, result);
+  std::vector<std::vector<std::size_t>> members(cad.faces.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (result.point_face[i] != 0) members[result.point_face[i] - 1].push_back(i);
+  }
+  result.faces.resize(cad.faces.size());
+  for (std::size_t f = 0; f < cad.faces.size(); ++f) {
+    FaceInspection& face = result.faces[f];
+    face.id = f + 1;
+    face.nominal = cad.faces[f];
+    std::vector<Eigen::Vector3d> p, n;
+    std::vector<double> d;
+    for (const std::size_t i : members[f]) {
+      p.push_back(points[i]);
+      n.push_back(normals[i]);
+      d.push_back(is_analytic(face.nominal.type) ? analytic_signed_distance(face.nominal, points[i]) : to_mesh[i]);
+    }
+    detail::measure_face(p, n, d, options, face);
+    report(options.progress, "faces", static_cast<double>(f + 1) / static_cast<double>(cad.faces.size()));
+  }
+}
+
+}  // namespace
+
+bool InspectOptions::IsValid(std::string* error) const {
+  const std::string why = invalid_reason(*this);
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+InspectResult run_inspect(const InspectOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  InspectResult result;
+  Mesh scan = read_scan(options, result);
+  result.scan_points = scan.vertices.size();
+  report(options.progress, "read CAD", 0.0);
+  CadReport cad_report;
+  const CadFaces cad = read_cad_faces(options.reference_path, options.cad, &cad_report, &result.warnings);
+  result.cad_inputs.push_back(cad_report);
+  report(options.progress, "read CAD", 1.0);
+
+  if (!options.transform_path.empty()) {
+    result.alignment = "transform";
+    result.T_ref_scan = read_transform(options.transform_path);
+    result.T_ref_scan.translation() *= options.mm_per_unit;
+  } else if (options.best_fit) {
+    result.alignment = "best-fit";
+    if (!best_fit(options, result)) {
+      result.termination = "the best fit is not trusted: " + result.align_summary;
+      return result;
+    }
+  }
+  if (result.alignment != "none") scan = transformed(scan, result.T_ref_scan);
+
+  result.scan_noise_mm = estimate_surface_noise(scan.vertices);
+  result.max_distance_automatic = options.max_distance_mm == 0.0;
+  result.max_distance_mm = result.max_distance_automatic
+                               ? std::max(kInspectMinAutoDistanceMm, kInspectNoiseSigmas * result.scan_noise_mm)
+                               : options.max_distance_mm;
+  NormalOptions pca;
+  pca.k = options.normal_neighbours;
+  std::vector<Eigen::Vector3d> normals;
+  normals.reserve(scan.vertices.size());
+  for (const auto& n : estimate_normals(to_cloud(scan), pca)) normals.emplace_back(n.normal_x, n.normal_y, n.normal_z);
+
+  assign_points(scan.vertices, normals, cad, options, result);
+  measure_faces(scan.vertices, normals, cad, options, result);
+  const double unassigned = static_cast<double>(result.scan_points - result.assigned);
+  if (unassigned > 0.05 * static_cast<double>(result.scan_points)) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "%.1f %% of the scan is on no face (%zu beyond %.3g mm, %zu with a normal not the face's): "
+                  "points off the part, or a larger deviation than the cut (raise --max-distance)",
+                  100.0 * unassigned / static_cast<double>(result.scan_points), result.beyond_distance,
+                  result.max_distance_mm, result.normal_mismatch);
+    result.warnings.push_back(text);
+  }
+  result.ok = result.assigned > 0;
+  result.termination = result.ok ? "ok" : "no scan point lies on a face of the CAD (is the scan in the part frame?)";
+  if (!options.out_faces_path.empty()) {
+    report(options.progress, "write", 0.0);
+    OutputSet outputs;
+    detail::faces_csv(result).write(options.out_faces_path);
+    outputs.commit();
+    result.out_faces_path = options.out_faces_path;
+    report(options.progress, "write", 1.0);
+  }
+  return result;
+}
+
+}  // namespace conform

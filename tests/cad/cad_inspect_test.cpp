@@ -1,0 +1,221 @@
+// `conform inspect` (issue 33) on a generated part with known errors: a 80 x 60 x 20 mm block with two 12 mm through
+// holes, made with OpenCASCADE and written as STEP. The scan is sampled on its exact faces and each face is given a
+// known error along its outward normal: the top bowed (0.04 mm), the side x = 80 tilted (0.1 deg), hole A oversize
+// (+0.05 mm in radius), hole B shifted (+0.1 mm in x); Gaussian noise (0.005 mm) on all; the bottom half scanned,
+// the side y = 0 not at all; points off the part (a fixture 3-8 mm above the top, a wall standing on it). The scan is
+// moved into its own frame and the transform given back, as `conform align --out-transform` writes it.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Ax2.hxx>
+#include <nlohmann/json.hpp>
+
+#include "cad_shapes.h"
+#include "conform/core/cad_faces.h"
+#include "conform/core/io.h"
+#include "conform/core/transform_io.h"
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace conform {
+namespace {
+
+constexpr double kBow = 0.04, kTiltDeg = 0.1, kOversize = 0.05, kShift = 0.1, kNoise = 0.005, kRadius = 6.0;
+
+TopoDS_Shape block_with_two_holes() {
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 80.0, 60.0, 20.0).Shape();
+  for (const double x : {20.0, 60.0}) {
+    const TopoDS_Shape drill = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, 30, -5), gp::DZ()), kRadius, 30.0).Shape();
+    part = BRepAlgoAPI_Cut(part, drill).Shape();
+  }
+  return part;
+}
+
+enum class Role { kTop, kBottom, kHiddenSide, kTiltedSide, kOtherSide, kOversizeHole, kShiftedHole };
+
+Role role_of(const CadFace& f) {
+  if (f.type == CadSurfaceType::kCylinder) return f.origin_mm.x() < 40.0 ? Role::kOversizeHole : Role::kShiftedHole;
+  if (f.axis.z() > 0.5) return Role::kTop;
+  if (f.axis.z() < -0.5) return Role::kBottom;
+  if (f.axis.y() < -0.5) return Role::kHiddenSide;
+  if (f.axis.x() > 0.5) return Role::kTiltedSide;
+  return Role::kOtherSide;
+}
+
+// The known error of the surface at p (on the nominal face), along the face's outward normal, mm.
+double error_at(Role role, const Eigen::Vector3d& p) {
+  switch (role) {
+    case Role::kTop:
+      return kBow * std::sin(M_PI * p.x() / 80.0) * std::sin(M_PI * p.y() / 60.0);
+    case Role::kTiltedSide:
+      return (p.z() - 10.0) * std::tan(kTiltDeg * M_PI / 180.0);
+    case Role::kOversizeHole:
+      return -kOversize;  // the wall moves away from the axis, into the material: outside (the hole) is towards it
+    case Role::kShiftedHole: {
+      // Along the radial direction u from the nominal axis, the shifted wall (axis moved by s) is at
+      // r = s.u + sqrt(R^2 - |s|^2 + (s.u)^2).
+      const Eigen::Vector2d u = (p.head<2>() - Eigen::Vector2d(60.0, 30.0)).normalized();
+      const double su = kShift * u.x();
+      return -(su + std::sqrt(kRadius * kRadius - kShift * kShift + su * su) - kRadius);
+    }
+    default:
+      return 0.0;
+  }
+}
+
+struct GeneratedScan {
+  std::vector<Eigen::Vector3d> points;  // part frame
+  std::vector<std::vector<double>> truth;  // per face index, the true deviation of each of its points
+  std::size_t off_part = 0;
+  std::size_t wall_near = 0;  // points of the wall within 0.5 mm of the top
+};
+
+GeneratedScan generate(const TopoDS_Shape& part, const CadFaces& cad) {
+  GeneratedScan scan;
+  const test::SurfaceSample s = test::sample_surface(part, 30000, 0.0, 5);
+  std::mt19937_64 random(9);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  scan.truth.resize(cad.faces.size());
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const auto f = static_cast<std::size_t>(s.face[i]);
+    const Role role = role_of(cad.faces[f]);
+    if (role == Role::kHiddenSide || (role == Role::kBottom && s.points[i].x() > 40.0)) continue;
+    const double d = error_at(role, s.points[i]) + noise(random);
+    scan.points.push_back(s.points[i] + d * s.normals[i]);
+    scan.truth[f].push_back(d);
+  }
+  std::uniform_real_distribution<double> x_of(5.0, 75.0), y_of(5.0, 55.0), z_of(23.0, 28.0);
+  for (int i = 0; i < 300; ++i, ++scan.off_part) scan.points.emplace_back(x_of(random), y_of(random), z_of(random));
+  // A wall standing on the top at x = 40 (a clamp): within the distance cut of the top near its foot, its normal
+  // along x, not the top's.
+  for (int k = 0; k < 20; ++k) {
+    const double z = 20.15 + 0.1 * k;
+    for (int j = 0; j < 100; ++j, ++scan.off_part) scan.points.emplace_back(40.0, 5.0 + 0.1 * j, z);
+    if (z < 20.5) scan.wall_near += 100;
+  }
+  return scan;
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (const double x : v) sum += x;
+  return sum / static_cast<double>(v.size());
+}
+
+TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
+  test::TempDir dir;
+  const TopoDS_Shape part = block_with_two_holes();
+  const std::string step = dir.file("part.step");
+  test::write_cad(part, step, test::CadFormat::kStep, "MM");
+  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  ASSERT_EQ(cad.faces.size(), 8u);
+  const GeneratedScan scan = generate(part, cad);
+
+  // The scan in a frame of its own: rotated 2 deg about (1, 2, 3) and moved (5, -3, 2) mm.
+  Eigen::Isometry3d T_scan_ref = Eigen::Isometry3d::Identity();
+  T_scan_ref.rotate(Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()));
+  T_scan_ref.translation() = Eigen::Vector3d(5.0, -3.0, 2.0);
+  Mesh cloud;
+  for (const Eigen::Vector3d& p : scan.points) cloud.vertices.push_back(T_scan_ref * p);
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(dir.file("scan.ply"), cloud, precise);
+  write_transform(dir.file("T_ref_scan.txt"), T_scan_ref.inverse());
+
+  const test::RunResult r =
+      test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("scan.ply"), "--reference", step, "--transform",
+                              dir.file("T_ref_scan.txt"), "--out-faces", dir.file("faces.csv"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  EXPECT_NEAR(j.at("scan_noise_mm").get<double>(), kNoise, 0.002);
+  EXPECT_EQ(j.at("max_distance_mm").get<double>(), 0.5);  // 20 noise sigmas are less than the 0.5 mm floor
+  // Every point off the part is on no face: the fixture beyond the cut, the wall's foot by its normal.
+  const std::size_t on_part = scan.points.size() - scan.off_part;
+  EXPECT_GE(j.at("unassigned_beyond_distance").get<std::size_t>(), scan.off_part - scan.wall_near);
+  EXPECT_GE(j.at("unassigned_normal_mismatch").get<std::size_t>(), scan.wall_near);
+  EXPECT_LE(j.at("assigned").get<std::size_t>(), on_part);
+  EXPECT_GE(j.at("assigned").get<std::size_t>(), static_cast<std::size_t>(0.95 * static_cast<double>(on_part)));
+
+  const nlohmann::json& faces = j.at("faces");
+  ASSERT_EQ(faces.size(), cad.faces.size());
+  for (std::size_t f = 0; f < cad.faces.size(); ++f) {
+    const nlohmann::json& face = faces[f];
+    const Role role = role_of(cad.faces[f]);
+    SCOPED_TRACE("face " + std::to_string(f + 1) + ": " + face.dump());
+    EXPECT_EQ(face.at("id").get<std::size_t>(), f + 1);
+    EXPECT_EQ(face.at("deviation_to"), "exact surface");
+    if (role == Role::kHiddenSide) {
+      EXPECT_EQ(face.at("points").get<int>(), 0);
+      EXPECT_TRUE(face.at("mean_mm").is_null());
+      continue;
+    }
+    // Most of the face's points are assigned to it (a few along its edges fail the normal check).
+    const auto points = face.at("points").get<std::size_t>();
+    EXPECT_GE(points, static_cast<std::size_t>(0.9 * static_cast<double>(scan.truth[f].size())));
+    EXPECT_LE(points, scan.truth[f].size() + 5);
+    // The mean deviation is the known error's mean over the face, within 0.002 mm.
+    EXPECT_NEAR(face.at("mean_mm").get<double>(), mean(scan.truth[f]), 0.002);
+    const double form = face.at("form_mm").get<double>();
+    switch (role) {
+      case Role::kTop:  // bowed: flatness is the bow plus the noise's 99 % zone (about 5.2 sigma)
+        EXPECT_GT(form, kBow);
+        EXPECT_LT(form, kBow + 7.0 * kNoise);
+        EXPECT_LT(face.at("angle_to_nominal_deg").get<double>(), 0.005);
+        EXPECT_LT(face.at("max_mm").get<double>(), kBow + 5.0 * kNoise);  // the wall's foot is not on it
+        break;
+      case Role::kTiltedSide:
+        EXPECT_NEAR(face.at("angle_to_nominal_deg").get<double>(), kTiltDeg, 0.005);
+        EXPECT_LT(form, 7.0 * kNoise);  // tilted, not bent: flat to the noise
+        EXPECT_NEAR(face.at("min_mm").get<double>(), -10.0 * std::tan(kTiltDeg * M_PI / 180.0), 4.0 * kNoise);
+        break;
+      case Role::kOversizeHole:
+        EXPECT_NEAR(face.at("radius_mm").get<double>(), kRadius + kOversize, 0.002);
+        EXPECT_EQ(face.at("nominal_radius_mm").get<double>(), kRadius);
+        EXPECT_LT(face.at("axis_offset_mm").get<double>(), 0.003);
+        EXPECT_LT(form, 7.0 * kNoise);
+        break;
+      case Role::kShiftedHole:
+        EXPECT_NEAR(face.at("radius_mm").get<double>(), kRadius, 0.002);
+        EXPECT_NEAR(face.at("axis_offset_mm").get<double>(), kShift, 0.003);
+        EXPECT_NEAR(face.at("axis_point_mm")[0].get<double>(), 60.0 + kShift, 0.003);
+        EXPECT_NEAR(face.at("max_mm").get<double>(), kShift, 4.0 * kNoise);
+        EXPECT_NEAR(face.at("min_mm").get<double>(), -kShift, 4.0 * kNoise);
+        EXPECT_LT(form, 7.0 * kNoise);  // about the fitted cylinder the shift is gone
+        break;
+      default:  // the untouched faces, the bottom half scanned
+        EXPECT_LT(face.at("angle_to_nominal_deg").get<double>(), 0.01);
+        EXPECT_LT(form, 7.0 * kNoise);
+        break;
+    }
+  }
+  // The CSV holds the same faces.
+  const std::string csv = test::read_bytes(dir.file("faces.csv"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(cad.faces.size()) + 1);
+}
+
+TEST(InspectCommand, BadUsageIsExitTwo) {
+  test::TempDir dir;
+  const test::RunResult mesh_reference =
+      test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("s.ply"), "--reference", dir.file("part.stl")});
+  EXPECT_EQ(mesh_reference.exit_code, 2);
+  EXPECT_NE(mesh_reference.err.find("needs the CAD's faces"), std::string::npos) << mesh_reference.err;
+  const test::RunResult both = test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("s.ply"), "--reference",
+                                                       dir.file("p.step"), "--transform", dir.file("T.txt"),
+                                                       "--align", "best-fit"});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("exclude each other"), std::string::npos) << both.err;
+}
+
+}  // namespace
+}  // namespace conform
