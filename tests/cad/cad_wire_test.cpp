@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -165,6 +166,38 @@ TEST(CadWire, FacesThatDoNotAddUpAreRefused) {
   for (std::size_t n = good.size() - 150; n < good.size(); ++n) {
     EXPECT_FALSE(decode_cad_result(good.data(), n, 100, &out, &why)) << n;
   }
+}
+
+// A garbled wire (a child corrupted by OpenCASCADE): random bytes of a valid result overwritten, from a fixed seed.
+// Decoding either refuses it or gives a result whose indices are all in range; it never reads out of bounds (the
+// sanitizer build runs this too).
+TEST(CadWire, GarbledResultsAreRefusedOrConsistent) {
+  const Sample s;
+  const std::string good = s.payload();
+  std::mt19937_64 random(3);
+  std::uniform_int_distribution<std::size_t> at(0, good.size() - 1);
+  std::uniform_int_distribution<int> byte(0, 255), count(1, 4);
+  std::size_t refused_count = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    std::string bad = good;
+    for (int k = count(random); k > 0; --k) bad[at(random)] = static_cast<char>(byte(random));
+    CadWireResult out;
+    std::string why;
+    if (!decode_cad_result(bad.data(), bad.size(), 100, &out, &why)) {
+      EXPECT_FALSE(why.empty());
+      ++refused_count;
+      continue;
+    }
+    ASSERT_EQ(out.triangle_faces.size(), out.mesh.faces.size());
+    for (const std::int32_t f : out.triangle_faces) {
+      ASSERT_GE(f, 0);
+      ASSERT_LT(static_cast<std::size_t>(f), out.faces.size());
+    }
+    for (const Face& t : out.mesh.faces) {
+      for (const std::int32_t v : t) ASSERT_LT(static_cast<std::size_t>(v), out.mesh.vertices.size());
+    }
+  }
+  EXPECT_GT(refused_count, 1000u);  // most corruptions are caught (the rest changed a value that can take any)
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "conform/core/cad.h"
+#include "conform/core/cad_faces.h"
 #include "conform/core/error.h"
 #include "fuzz_input.h"
 
@@ -35,7 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     conform::CadReport report;
     std::vector<std::string> warnings;
-    (void)conform::read_cad(path, options, &report, &warnings);
+    // read_cad_faces decodes all read_cad does and the faces' section (issue 33) on top.
+    (void)conform::read_cad_faces(path, options, &report, &warnings);
   } catch (const conform::Error&) {
   }
   return 0;
