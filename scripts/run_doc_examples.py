@@ -8,7 +8,8 @@ What runs (docs/measurements/ is history, not examples, and is not read):
   - in README.md, the job table's example cells: a cell that is one code span starting with `conform `.
 
 Where it runs: each file gets its own fresh temporary directory laid out like a clone, holding a copy of
-datasets/examples/ and a build/ folder with `conform` and `python/` (links to the built ones), and the commands run
+datasets/examples/ and datasets/real/ and a build/ folder with `conform` and `python/` (links to the built ones), and the
+commands run
 there in the order they appear, so `datasets/examples/tube_patch.ply`, `build/conform` and
 `PYTHONPATH=build/python` mean what they mean in a fresh clone, `conform` on PATH is the built program, and a
 relative output of one example is the input of a later one in the same file.
@@ -36,6 +37,7 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FENCE = re.compile(r"^(`{3,})\s*([A-Za-z0-9_+-]*)(.*)$")
 TABLE_EXAMPLE = re.compile(r"^`(conform [^`]+)`$")
 TIMEOUT_S = 300
+DATA_DIRS = ("datasets/examples", "datasets/real")  # what a fresh clone has that the examples read
 
 
 class Example:
@@ -100,7 +102,8 @@ def extract(path):
 def make_clone(conform, python_dir):
     """A temporary directory laid out like a fresh clone with the program built."""
     root = tempfile.mkdtemp(prefix="conform-doc-examples-")
-    shutil.copytree(os.path.join(REPO, "datasets", "examples"), os.path.join(root, "datasets", "examples"))
+    for data in DATA_DIRS:
+        shutil.copytree(os.path.join(REPO, data), os.path.join(root, data))
     os.makedirs(os.path.join(root, "build"))
     os.makedirs(os.path.join(root, "bin"))
     os.symlink(conform, os.path.join(root, "build", "conform"))
