@@ -21,9 +21,10 @@ namespace {
 class ExportCommand : public Command {
  public:
   void configure(CLI::App& c) override {
-    c.add_option("--path", path_,
+    c.add_option("--path", paths_,
                  "Path CSV of a job: tube-joint cut or weld, saddle, sicp trajectory, profile cut, weld-layers; "
-                 "required")
+                 "required. Repeat it for several paths in one program, in order (a joint's cut then its weld), "
+                 "with a retract and an approach between them")
         ->required();
     c.add_option("--format", format_, "Program format")
         ->required()
@@ -73,13 +74,14 @@ class ExportCommand : public Command {
   }
 
   void declare_files(OutputSet& files) override {
-    files.add_inputs({path_, frame_path_});
+    files.add_inputs(paths_);
+    files.add_input(frame_path_);
     files.add_output(out_);
   }
 
   int run() override {
     ExportJobOptions o;
-    o.path_csv = path_;
+    o.path_csvs = paths_;
     o.format = format_;
     o.out_path = out_;
     o.frame_path = frame_path_;
@@ -108,7 +110,10 @@ class ExportCommand : public Command {
     if (json_) {
       print_json(export_json(o, r));
     } else {
-      std::printf("path          %s file, %zu segments, %zu frames\n", r.job.c_str(), r.segments, r.frames);
+      for (const ExportPathFile& file : r.files) {
+        std::printf("path          %s: %s file, %zu segments, %zu frames\n", file.path.c_str(), file.job.c_str(),
+                    file.segments, file.frames);
+      }
       std::printf("program       %s, %zu motion points (approach %g mm), %zu part%s\n", format_.c_str(), r.targets,
                   options_.approach_mm, r.parts, r.parts == 1 ? "" : "s");
       std::printf("orientation   largest change between consecutive frames %.4f deg (frame %zu)\n", max_step_deg,
@@ -120,7 +125,7 @@ class ExportCommand : public Command {
     for (const std::string& w : export_warnings(r)) warn("export: " + w);
   }
 
-  std::string path_;
+  std::vector<std::string> paths_;
   std::string format_;
   std::string out_;
   std::string frame_path_;

@@ -9,23 +9,60 @@
 #include "conform/core/transform_io.h"
 
 namespace conform {
+namespace {
+
+// The figures of a later file's frames added to those of the files before it (`frames_before` frames).
+void add_figures(const ToolFrameFigures& later, std::size_t frames_before, ToolFrameFigures& all) {
+  if (later.max_orientation_step_rad > all.max_orientation_step_rad) {
+    all.max_orientation_step_rad = later.max_orientation_step_rad;
+    all.max_step_index = frames_before + later.max_step_index;
+  }
+  all.parallel_tangents += later.parallel_tangents;
+  all.repeated_points += later.repeated_points;
+  all.roll_limited += later.roll_limited;
+}
+
+// The files' paths in order, one program's segments.
+ToolPath read_paths(const ExportJobOptions& options, ExportJobResult& result) {
+  ToolPath all;
+  for (const std::string& file : options.path_csvs) {
+    ToolFrameFigures figures;
+    ToolPath path = tool_path_from_csv(read_csv(file), options.frames, &figures);
+    add_figures(figures, all.frames(), result.figures);
+    result.files.push_back({file, path.job, path.segments.size(), path.frames()});
+    if (all.job.empty()) {
+      all.job = path.job;
+    } else if (result.files[result.files.size() - 2].job != path.job) {
+      all.job += "+" + path.job;
+    }
+    for (ToolSegment& segment : path.segments) all.segments.push_back(std::move(segment));
+  }
+  return all;
+}
+
+}  // namespace
 
 ExportJobResult run_export(const ExportJobOptions& options) {
   std::string why;
   if (!options.frames.IsValid(&why)) throw Error("export: " + why);
   if (options.out_path.empty()) throw Error("export: no output file given");
+  if (options.path_csvs.empty()) throw Error("export: no path file given");
   ProgramOptions program = options.program;
   const std::filesystem::path out(options.out_path);
   const bool named = !program.name.empty();
   if (!named) program.name = out.stem().string();
   if (!options.frame_path.empty()) program.T_base_part = read_transform(options.frame_path);
-  if (program.source.empty()) program.source = std::filesystem::path(options.path_csv).filename().string();
+  if (program.source.empty()) {
+    for (const std::string& file : options.path_csvs) {
+      program.source += (program.source.empty() ? "" : ", ") + std::filesystem::path(file).filename().string();
+    }
+  }
   if (!program.IsValid(&why))
     throw Error("export: " + why + (named ? "" : " (the name is the output's stem; give one)"));
   program_extension(options.format);  // an unknown format before any reading
 
   ExportJobResult result;
-  const ToolPath path = tool_path_from_csv(read_csv(options.path_csv), options.frames, &result.figures);
+  const ToolPath path = read_paths(options, result);
   const Program written = write_program(path, options.format, program);
   // All files or none, also when called outside a command's set.
   OutputSet files;

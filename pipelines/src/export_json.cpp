@@ -28,7 +28,12 @@ std::vector<std::string> export_warnings(const ExportJobResult& r) {
 
 nlohmann::json export_json(const ExportJobOptions& options, const ExportJobResult& r) {
   const ToolFrameFigures& f = r.figures;
+  nlohmann::json files = nlohmann::json::array();
+  for (const ExportPathFile& file : r.files) {
+    files.push_back({{"path", file.path}, {"job", file.job}, {"segments", file.segments}, {"frames", file.frames}});
+  }
   return {{"job", r.job},
+          {"paths", files},
           {"format", options.format},
           {"segments", r.segments},
           {"frames", r.frames},

@@ -140,7 +140,7 @@ def sicp(contour, scan, trajectory, **options):
 
 def export(path, **options):
     """`conform export`: a job's path CSV (tube-joint cut or weld, saddle, sicp trajectory, profile, weld-layers) as a
-    robot or CNC program. Options as the CLI's flags: format (krl, rapid, urscript, fanuc, val3, gcode, csv) and out
+    robot or CNC program; a list of them goes into one program in order (the CLI's repeated --path). Options as the CLI's flags: format (krl, rapid, urscript, fanuc, val3, gcode, csv) and out
     (required), frame (path or (4, 4) T_base_part), speed_mm_s, approach_speed_mm_s, approach_mm, name, tool,
     work_object, max_points, three_axis, roll_cone_deg, preferred_x ([x, y, z]). `written` lists the files."""
     return _result("export", _conform.export(path, **options))

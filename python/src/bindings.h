@@ -57,6 +57,10 @@ class CallFiles {
     for (const std::string& path : inputs) files_.add_input(path);
     for (const std::string& path : outputs) files_.add_output(path);
   }
+  CallFiles(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+    files_.add_inputs(inputs);
+    for (const std::string& path : outputs) files_.add_output(path);
+  }
   void commit() { files_.commit(); }
 
  private:

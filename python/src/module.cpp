@@ -171,7 +171,13 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
   if (preferred_x.size() != 3) throw Error("preferred_x: give three numbers x, y, z");
   Inputs inputs;
   ExportJobOptions o;
-  o.path_csv = path_of(path);
+  // One path file or several, in program order (the CLI's repeated --path).
+  if (py::isinstance<py::list>(path) || py::isinstance<py::tuple>(path)) {
+    for (const py::handle item : path) o.path_csvs.push_back(path_of(py::reinterpret_borrow<py::object>(item)));
+    if (o.path_csvs.empty()) throw Error("path: give at least one path file");
+  } else {
+    o.path_csvs.push_back(path_of(path));
+  }
   o.format = format;
   o.out_path = path_of(out);
   o.frame_path = inputs.transform(frame, "frame");
@@ -193,7 +199,9 @@ py::tuple job_export(const py::object& path, const std::string& format, const py
     o.program.home_deg = *home;
   }
   check_export_name(o);
-  CallFiles files({o.path_csv, o.frame_path}, {o.out_path});  // the part files too, when staged
+  std::vector<std::string> inputs_read = o.path_csvs;
+  inputs_read.push_back(o.frame_path);
+  CallFiles files(inputs_read, std::vector<std::string>{o.out_path});  // the part files too, when staged
   const ExportJobResult result = [&] {
     py::gil_scoped_release release;
     return run_export(o);

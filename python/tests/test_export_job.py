@@ -36,3 +36,20 @@ def test_export_matches_cli(tmp_path):
     with pytest.raises(conform.Error) as e:
         conform.export(path, format="krl", out=tmp_path / "1bad.src")
     assert as_python(stderr.strip().splitlines()[-1]) == f"conform: error: {e.value}"
+
+
+def test_export_takes_several_paths_as_the_cli(tmp_path):
+    """A list of path files is one program in order, as the CLI's repeated --path."""
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    cli("saddle", "--R", 100, "--r", 40, "--right-angle-pose-deg", 45, "--step-deg", 5, "--out", a)
+    cli("saddle", "--R", 120, "--r", 30, "--right-angle-pose-deg", 30, "--step-deg", 10, "--out", b)
+    expected = cli_json("export", "--path", a, "--path", b, "--format", "rapid", "--out", tmp_path / "cli.mod",
+                        "--name", "seams")
+    r = conform.export([a, str(b)], format="rapid", out=tmp_path / "py.mod", name="seams")
+    got = r.to_dict()
+    got["written"] = expected["written"]
+    assert_same(got, expected)
+    assert r.segments == 2 and [p["job"] for p in r.paths] == ["saddle", "saddle"]
+    assert open(tmp_path / "py.mod", "rb").read() == open(tmp_path / "cli.mod", "rb").read()
+    with pytest.raises(conform.Error, match="at least one"):
+        conform.export([], format="rapid", out=tmp_path / "none.mod")

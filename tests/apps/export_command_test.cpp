@@ -2,6 +2,9 @@
 // bytes twice, and bad input (exit 2, the file and the problem named, nothing written).
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -161,6 +164,58 @@ TEST_F(ExportCommand, JobFilesGiveTheirToolAxes) {
     EXPECT_LT((vec(frames, i, "x_mm", "y_mm", "z_mm") - vec(tube, row, "x_mm", "y_mm", "z_mm")).norm(), 1e-9);
     EXPECT_LT((tool_axis(frames, i) - vec(tube, row, "dx", "dy", "dz").normalized()).norm(), 1e-9) << i;
   }
+}
+
+// Two paths in one program (a joint's cut then its weld): the first file's motion points, then the second's, each
+// with its own approach and retract, the process lines around each; the same frames as exported one by one.
+TEST_F(ExportCommand, SeveralPathFilesGoIntoOneProgramInOrder) {
+  ASSERT_EQ(conform({"saddle", "--R", "500", "--r", "120", "--start-pose-deg", "30", "--step-deg", "6", "--out",
+                     dir.file("second.csv")})
+                .exit_code,
+            0);
+  for (const auto& [path, out] : {std::pair<std::string, std::string>{"seam.csv", "a.csv"}, {"second.csv", "b.csv"}}) {
+    ASSERT_EQ(conform({"export", "--path", dir.file(path), "--format", "csv", "--out", dir.file(out)}).exit_code, 0);
+  }
+  auto r = conform({"export", "--path", dir.file("seam.csv"), "--path", dir.file("second.csv"), "--format", "csv",
+                    "--out", dir.file("ab.csv"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["job"], "saddle");
+  EXPECT_EQ(json["segments"], 2);
+  ASSERT_EQ(json["paths"].size(), 2u);
+  EXPECT_EQ(json["paths"][1]["frames"], 61);
+  const Table a = table(test::read_bytes(dir.file("a.csv"))), b = table(test::read_bytes(dir.file("b.csv")));
+  const Table ab = table(test::read_bytes(dir.file("ab.csv")));
+  ASSERT_EQ(ab.rows(), a.rows() + b.rows());
+  for (std::size_t i = 0; i < ab.rows(); ++i) {
+    const bool first = i < a.rows();
+    const Table& one = first ? a : b;
+    const std::size_t k = first ? i : i - a.rows();
+    EXPECT_EQ(ab.text(i, ab.column("kind")), one.text(k, one.column("kind"))) << i;
+    EXPECT_EQ(number(ab, i, "segment"), first ? 0.0 : 1.0) << i;
+    for (const char* c : {"x_mm", "y_mm", "z_mm"}) EXPECT_EQ(number(ab, i, c), number(one, k, c));
+    // The same rotation; the quaternion's sign is kept continuous over the whole program, so it may flip.
+    double dot = 0.0;
+    for (const char* c : {"qw", "qx", "qy", "qz"}) dot += number(ab, i, c) * number(one, k, c);
+    EXPECT_NEAR(std::abs(dot), 1.0, 1e-9) << i;  // as written: 12 significant digits
+  }
+  // A robot program: two approaches and retracts, the process lines around each path.
+  r = conform({"export", "--path", dir.file("seam.csv"), "--path", dir.file("second.csv"), "--format", "krl",
+               "--process-on", "ARC_ON()", "--process-off", "ARC_OFF()", "--out", dir.file("ab.src")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string krl = test::read_bytes(dir.file("ab.src"));
+  std::size_t on = 0, off = 0;
+  for (std::size_t at = krl.find("ARC_ON()"); at != std::string::npos; at = krl.find("ARC_ON()", at + 1)) ++on;
+  for (std::size_t at = krl.find("ARC_OFF()"); at != std::string::npos; at = krl.find("ARC_OFF()", at + 1)) ++off;
+  EXPECT_EQ(on, 2u);
+  EXPECT_EQ(off, 2u);
+  EXPECT_NE(krl.find("seam.csv, second.csv"), std::string::npos);  // the header names both sources
+  // A missing second file: exit 2 naming it, nothing written.
+  r = conform({"export", "--path", dir.file("seam.csv"), "--path", dir.file("none.csv"), "--format", "krl", "--out",
+               dir.file("x.src")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("none.csv"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.src")));
 }
 
 TEST_F(ExportCommand, ALargeTurnBetweenFramesIsWarnedAbout) {

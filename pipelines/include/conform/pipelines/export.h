@@ -12,7 +12,10 @@
 namespace conform {
 
 struct ExportJobOptions {
-  std::string path_csv;    // the job's path file; required
+  // The jobs' path files, in program order (a tube joint's cut then its weld, the layers of several weld-layers
+  // files): each file's paths follow the previous file's, with the retract and approach between paths as within one
+  // file. At least one.
+  std::vector<std::string> path_csvs;
   std::string format;      // program_formats(); required
   std::string out_path;    // the main program file; the others go beside it under their own names; required
   std::string frame_path;  // T_base_part, 4x4 text; empty: program.T_base_part as given (identity by default)
@@ -20,8 +23,17 @@ struct ExportJobOptions {
   ProgramOptions program;  // an empty program.name is taken from out_path's stem
 };
 
+// One path file of a program.
+struct ExportPathFile {
+  std::string path;
+  std::string job;  // which job's file it is
+  std::size_t segments = 0;
+  std::size_t frames = 0;
+};
+
 struct ExportJobResult {
-  std::string job;  // which job's file it was
+  std::string job;  // which job's file it was; several: their jobs in order, '+' between distinct neighbours
+  std::vector<ExportPathFile> files;
   std::size_t segments = 0;
   std::size_t frames = 0;
   std::size_t targets = 0;  // motion points, with approach and retract
