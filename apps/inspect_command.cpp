@@ -42,6 +42,9 @@ class InspectCommand : public Command {
                  "Share of a face's residuals left out of its form zone, half at each end; default 0.01");
     c.add_option("--min-fit-points", options_.min_fit_points,
                  "Fewer points on a face: no feature fitted; default 30");
+    c.add_option("--tolerances", options_.tolerances_path,
+                 "Limits per face, .csv with columns face, lower_mm, upper_mm, form_mm (an empty cell: not "
+                 "toleranced): pass/fail per face and a verdict; the exit code stays 0 when the job ran");
     c.add_option("--out-faces", options_.out_faces_path, "Write one row per face as .csv");
     c.add_option("--units", units_, "Units of the scan and the transform (mm, cm, m, in); the CAD says its own");
     add_cad_options(c, options_.cad);
@@ -49,7 +52,8 @@ class InspectCommand : public Command {
   }
 
   void declare_files(OutputSet& files) override {
-    files.add_inputs({options_.scan_path, options_.reference_path, options_.transform_path});
+    files.add_inputs(
+        {options_.scan_path, options_.reference_path, options_.transform_path, options_.tolerances_path});
     files.add_outputs({options_.out_faces_path, options_.cad.save_mesh_path});
   }
 
@@ -96,6 +100,7 @@ class InspectCommand : public Command {
       } else {
         std::printf("%8s  ", "-");
       }
+      if (f.verdict) std::printf("%s ", !f.verdict->measured ? "NOT MEASURED" : f.verdict->pass ? "pass" : "FAIL");
       if (f.fitted && f.nominal.type == CadSurfaceType::kCylinder) {
         std::printf("radius %.4f (nominal %.4f), axis offset %.4f mm, %.3f deg\n", f.radius_mm, f.nominal.radius_mm,
                     f.axis_offset_mm, f.axis_angle_deg);
@@ -108,6 +113,7 @@ class InspectCommand : public Command {
     std::size_t unseen = 0;
     for (const FaceInspection& f : r.faces) unseen += f.points == 0 ? 1 : 0;
     std::printf("faces        %zu, of which %zu without scan points\n", r.faces.size(), unseen);
+    if (!r.verdict.empty()) std::printf("verdict      %s (%s)\n", r.verdict.c_str(), options_.tolerances_path.c_str());
     if (!r.out_faces_path.empty()) std::printf("wrote        %s\n", r.out_faces_path.c_str());
   }
 

@@ -19,6 +19,7 @@
 #include "conform/registration/surface_noise.h"
 #include "inspect_features.h"
 #include "inspect_faces_csv.h"
+#include "inspect_tolerances.h"
 
 namespace conform {
 
@@ -44,6 +45,9 @@ std::string invalid_reason(const InspectOptions& o) {
   if (o.normal_neighbours < 5) return "the normals' neighbours must be >= 5";
   if (!(o.form_trim >= 0.0 && o.form_trim < 0.5)) return "--form-trim must be in [0, 0.5)";
   if (o.min_fit_points < 6) return "at least 6 points are needed to fit a feature";
+  if (!o.tolerances_path.empty() && file_extension(o.tolerances_path) != ".csv") {
+    return "--tolerances " + o.tolerances_path + ": must be .csv";
+  }
   if (!o.out_faces_path.empty() && file_extension(o.out_faces_path) != ".csv") {
     return "--out-faces " + o.out_faces_path + ": must be .csv";
   }
@@ -182,6 +186,11 @@ InspectResult run_inspect(const InspectOptions& options) {
   const CadFaces cad = read_cad_faces(options.reference_path, options.cad, &cad_report, &result.warnings);
   result.cad_inputs.push_back(cad_report);
   report(options.progress, "read CAD", 1.0);
+  // Read before the work, so that a bad file stops the job at once.
+  const std::vector<FaceTolerance> tolerances = options.tolerances_path.empty()
+                                                    ? std::vector<FaceTolerance>()
+                                                    : detail::read_face_tolerances(options.tolerances_path,
+                                                                                   cad.faces.size());
 
   if (!options.transform_path.empty()) {
     result.alignment = "transform";
@@ -219,6 +228,7 @@ InspectResult run_inspect(const InspectOptions& options) {
                   result.max_distance_mm, result.normal_mismatch);
     result.warnings.push_back(text);
   }
+  if (!tolerances.empty()) detail::judge_tolerances(tolerances, result);
   result.ok = result.assigned > 0;
   result.termination = result.ok ? "ok" : "no scan point lies on a face of the CAD (is the scan in the part frame?)";
   if (!options.out_faces_path.empty()) {

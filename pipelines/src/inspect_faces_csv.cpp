@@ -19,7 +19,7 @@ void number_or_empty(CsvWriter& csv, bool has, double value) {
 CsvWriter faces_csv(const InspectResult& result) {
   CsvWriter csv({"id", "type", "points", "deviation_to", "centroid_x_mm", "centroid_y_mm", "centroid_z_mm", "mean_mm",
                  "std_mm", "min_mm", "max_mm", "form_mm", "form_reference", "radius_mm", "nominal_radius_mm",
-                 "axis_offset_mm", "axis_angle_deg", "angle_to_nominal_deg", "plane_offset_mm"});
+                 "axis_offset_mm", "axis_angle_deg", "angle_to_nominal_deg", "plane_offset_mm", "verdict"});
   for (const FaceInspection& f : result.faces) {
     const bool seen = f.points > 0;
     const bool cylinder = f.fitted && f.nominal.type == CadSurfaceType::kCylinder;
@@ -39,6 +39,7 @@ CsvWriter faces_csv(const InspectResult& result) {
     number_or_empty(csv, cylinder, f.axis_angle_deg);
     number_or_empty(csv, plane, f.angle_to_nominal_deg);
     number_or_empty(csv, plane, f.plane_offset_mm);
+    csv.cell(!f.verdict ? "" : !f.verdict->measured ? "not measured" : f.verdict->pass ? "pass" : "fail");
     csv.end_row();
   }
   return csv;

@@ -70,6 +70,17 @@ nlohmann::json face_json(const FaceInspection& f) {
                       {"fitted", f.fitted},
                       {"fit_note", f.fit_note.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.fit_note)},
                       {"nominal", nominal_json(f.nominal)}};
+  if (f.verdict) {
+    const FaceVerdict& v = *f.verdict;
+    const auto limit = [](const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
+    j["tolerance"] = {{"lower_mm", limit(v.tolerance.lower_mm)},
+                      {"upper_mm", limit(v.tolerance.upper_mm)},
+                      {"form_mm", limit(v.tolerance.form_mm)},
+                      {"measured", v.measured},
+                      {"profile_pass", v.measured ? nlohmann::json(v.profile_pass) : nlohmann::json(nullptr)},
+                      {"form_pass", v.measured ? nlohmann::json(v.form_pass) : nlohmann::json(nullptr)},
+                      {"pass", v.measured ? nlohmann::json(v.pass) : nlohmann::json(nullptr)}};
+  }
   if (f.nominal.type == CadSurfaceType::kCylinder) {
     j["nominal_radius_mm"] = f.nominal.radius_mm;
     j["radius_mm"] = number_or_null(f.fitted, f.radius_mm);
@@ -111,6 +122,8 @@ nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& 
                        "holding all but form_trim of the residuals, half trimmed at each end; form_full_mm untrimmed"},
                       {"faces", faces},
                       {"out_faces", json_path_or_null(r.out_faces_path)}};
+  j["tolerances"] = json_path_or_null(options.tolerances_path);
+  j["verdict"] = r.verdict.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.verdict);
   if (r.alignment == "best-fit") {
     j["align_trust"] = r.align_trust;
     j["align_summary"] = r.align_summary;

@@ -202,6 +202,48 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   // The CSV holds the same faces.
   const std::string csv = test::read_bytes(dir.file("faces.csv"));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(cad.faces.size()) + 1);
+
+  // Tolerances: the bowed top's flatness (0.053 mm measured) over a 0.05 limit fails; the oversize hole's profile
+  // (its wall 0.05 mm into the material) fails a -0.03 limit; the shifted hole passes +-0.15 and a form of 0.04; the
+  // side that was not scanned cannot be judged. The job ran: exit 0, the verdict in the output.
+  std::string table = "face,lower_mm,upper_mm,form_mm\n";
+  std::size_t top = 0, oversize = 0, shifted = 0, hidden = 0;
+  for (std::size_t f = 0; f < cad.faces.size(); ++f) {
+    const Role role = role_of(cad.faces[f]);
+    if (role == Role::kTop) top = f + 1;
+    if (role == Role::kOversizeHole) oversize = f + 1;
+    if (role == Role::kShiftedHole) shifted = f + 1;
+    if (role == Role::kHiddenSide) hidden = f + 1;
+  }
+  table += std::to_string(top) + ",,,0.05\n" + std::to_string(oversize) + ",-0.03,0.03,\n" +
+           std::to_string(shifted) + ",-0.15,0.15,0.04\n" + std::to_string(hidden) + ",-0.1,0.1,\n";
+  test::write_bytes(dir.file("tolerances.csv"), table);
+  const test::RunResult judged =
+      test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("scan.ply"), "--reference", step, "--transform",
+                              dir.file("T_ref_scan.txt"), "--tolerances", dir.file("tolerances.csv"), "--json"});
+  ASSERT_EQ(judged.exit_code, 0) << judged.err;
+  const nlohmann::json v = nlohmann::json::parse(judged.out);
+  EXPECT_EQ(v.at("verdict"), "fail");
+  const nlohmann::json& vf = v.at("faces");
+  EXPECT_EQ(vf[top - 1].at("tolerance").at("form_pass"), false);
+  EXPECT_EQ(vf[top - 1].at("tolerance").at("pass"), false);
+  EXPECT_EQ(vf[oversize - 1].at("tolerance").at("profile_pass"), false);
+  EXPECT_EQ(vf[shifted - 1].at("tolerance").at("pass"), true);
+  EXPECT_EQ(vf[hidden - 1].at("tolerance").at("measured"), false);
+  EXPECT_TRUE(vf[hidden - 1].at("tolerance").at("pass").is_null());
+  for (std::size_t f = 1; f <= cad.faces.size(); ++f) {  // the faces the file does not name have no verdict
+    if (f != top && f != oversize && f != shifted && f != hidden) {
+      EXPECT_FALSE(vf[f - 1].contains("tolerance"));
+    }
+  }
+
+  // A tolerance file that names a face the CAD does not have is bad input: exit 2, naming the line.
+  test::write_bytes(dir.file("bad.csv"), "face,lower_mm,upper_mm,form_mm\n9,-0.1,0.1,\n");
+  const test::RunResult bad =
+      test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("scan.ply"), "--reference", step, "--transform",
+                              dir.file("T_ref_scan.txt"), "--tolerances", dir.file("bad.csv")});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.csv:2: face 9 is not one of the CAD's faces 1..8"), std::string::npos) << bad.err;
 }
 
 TEST(InspectCommand, BadUsageIsExitTwo) {

@@ -9,6 +9,7 @@
 // forced onto one.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct InspectOptions {
   // Fewer points on a face: its deviation figures are given, its feature is not fitted (nor its form measured).
   std::size_t min_fit_points = 30;
 
+  // .csv with columns face, lower_mm, upper_mm, form_mm (pipelines/src/inspect_tolerances.h): pass/fail per face;
+  // empty: no verdict.
+  std::string tolerances_path;
   std::string out_faces_path;  // .csv, one row per face; empty: not written
   ProgressFn progress;         // stages "read scan", "read CAD", "align", "assign", "faces", "write"
 
@@ -52,6 +56,22 @@ struct InspectOptions {
 
 constexpr double kInspectMinAutoDistanceMm = 0.5;
 constexpr double kInspectNoiseSigmas = 20.0;
+
+// A face's limits (--tolerances); an empty one is not toleranced.
+struct FaceTolerance {
+  std::size_t face_id = 0;
+  std::optional<double> lower_mm;  // every point's deviation >= this
+  std::optional<double> upper_mm;  // every point's deviation <= this
+  std::optional<double> form_mm;   // form_mm (the trimmed zone) <= this
+};
+
+struct FaceVerdict {
+  FaceTolerance tolerance;
+  bool measured = false;      // false: no points on the face (or no form where one is toleranced): no verdict
+  bool profile_pass = false;  // min and max deviation within [lower, upper]
+  bool form_pass = false;
+  bool pass = false;
+};
 
 // One CAD face as measured.
 struct FaceInspection {
@@ -80,6 +100,8 @@ struct FaceInspection {
   Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder: the fitted axis's point nearest the nominal's
   double axis_offset_mm = 0.0;   // cylinder: from the nominal axis point at the face's middle to the fitted axis
   double axis_angle_deg = 0.0;   // cylinder: between the fitted and the nominal axis
+
+  std::optional<FaceVerdict> verdict;  // with --tolerances, for the faces it names
 };
 
 struct InspectResult {
@@ -101,6 +123,9 @@ struct InspectResult {
   std::vector<std::string> warnings;
   std::vector<CadReport> cad_inputs;
   std::string out_faces_path;         // written; empty when not
+  // With tolerances: "pass" (every toleranced face measured and within), "fail" (one is not), "incomplete" (none
+  // fails, one is not measured); empty without.
+  std::string verdict;
 };
 
 // Throws conform::Error naming the file or option: invalid options, an unreadable or empty scan, a reference that is
