@@ -7,21 +7,20 @@ What runs (docs/measurements/ is history, not examples, and is not read):
   - every ```python block: the whole block as one script, with PYTHONPATH naming the built Python package;
   - in README.md, the job table's example cells: a cell that is one code span starting with `conform `.
 
-Where it runs: each file gets its own fresh temporary directory laid out like a clone, holding a copy of
-datasets/examples/ and datasets/real/ and a build/ folder with `conform` and `python/` (links to the built ones), and the
-commands run
-there in the order they appear, so `datasets/examples/tube_patch.ply`, `build/conform` and
-`PYTHONPATH=build/python` mean what they mean in a fresh clone, `conform` on PATH is the built program, and a
-relative output of one example is the input of a later one in the same file.
+Where it runs: each file gets its own fresh temporary directory laid out like a clone (a copy of datasets/examples/
+and datasets/real/, and a build/ folder with `conform` and `python/` linked to the built ones), and its commands run
+there in the order they appear: `datasets/examples/tube_patch.ply`, `build/conform` and `PYTHONPATH=build/python`
+mean what they mean from the root of a fresh clone, `conform` on PATH is the built program, and a relative output of
+one example is the input of a later one in the same file. Two files run at a time (--jobs).
 
-What does not run: a block whose fence says so, ```sh no-run (setup and build commands, a cluster, a synopsis is
-better written as ```text). Keep those few and say why in the text beside them. A cell or block whose language is
+What does not run: a block whose fence says so, ```sh no-run (installing packages, building, several hosts; a
+synopsis with [OPTIONS] is not an example: write it as ```text). Keep those few and say why in the text beside them. A cell or block whose language is
 not sh or python (```text, ```json, ```cpp, ```csv) is not an example.
 
 Usage: scripts/run_doc_examples.py [--conform build/conform] [--python-dir build/python] [--python /usr/bin/python3]
-                                   [--list] [--keep] [FILE.md ...]
-Exit 0 when every example ran with exit 0 (and every `conform` run that may exit 1 says so with `|| test $? = 1`);
-1 naming the file, the line, the command and its stderr for each that did not; 2 on bad usage.
+                                   [--list] [--keep] [-v] [--jobs N] [--exclude FILE.md] [FILE.md ...]
+Exit 0 when every example ran with exit 0; 1 naming the file, the line, the command and its stderr for each file
+whose examples stopped (the rest of that file is not run: later examples build on earlier ones); 2 on bad usage.
 """
 
 import argparse
