@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "conform/pipelines/deviation_colours.h"
@@ -12,6 +13,43 @@ namespace conform::html {
 namespace {
 
 constexpr std::size_t kBins = 60;
+constexpr std::size_t kWorst = 5;  // callouts
+
+// The points of largest |deviation|, at most kWorst, each at least 5 % of the points' extent from those before it
+// (so that one bump does not take every callout), largest first.
+std::vector<std::size_t> worst_points(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& d) {
+  std::vector<std::size_t> order;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (!std::isfinite(d[i]) || !points[i].allFinite()) continue;
+    order.push_back(i);
+    lo = lo.cwiseMin(points[i]), hi = hi.cwiseMax(points[i]);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&d](std::size_t a, std::size_t b) { return std::abs(d[a]) > std::abs(d[b]); });
+  const double apart = order.empty() ? 0.0 : 0.05 * (hi - lo).norm();
+  std::vector<std::size_t> out;
+  for (std::size_t i : order) {
+    if (out.size() == kWorst) break;
+    bool far = true;
+    for (std::size_t j : out) far = far && (points[i] - points[j]).norm() >= apart;
+    if (far) out.push_back(i);
+  }
+  return out;
+}
+
+Table worst_table(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& d,
+                  const std::vector<std::size_t>& worst, const DeviationView& v) {
+  Table t{"Largest " + v.quantity + "s (the callouts in the view)",
+          {"callout", "x (mm)", "y (mm)", "z (mm)", v.quantity + " (mm)"},
+          {}};
+  for (std::size_t k = 0; k < worst.size(); ++k) {
+    const Eigen::Vector3d& p = points[worst[k]];
+    t.rows.push_back({count(k + 1), number(p.x(), 3), number(p.y(), 3), number(p.z(), 3),
+                      number(d[worst[k]], 4)});
+  }
+  return t;
+}
 
 std::string pointer(const DeviationView& v, const char* key) {
   return v.tie_to_json ? v.json_prefix + "/" + key : std::string();
@@ -52,7 +90,15 @@ void add_deviation_view(Page& page, const std::vector<Eigen::Vector3d>& points, 
   for (double d : deviation_mm) colours.push_back(deviation_colour(d, s));
   // Sparse scans get bigger dots, so that their colours read at a glance.
   const double size_px = points.size() < 20000 ? 4.0 : points.size() < 100000 ? 3.0 : 2.0;
-  page.scene.add_points(view.scan_name, points, colours, size_px);
+  SceneObject& scan = page.scene.add_points(view.scan_name, points, colours, size_px);
+  scan.values = deviation_mm;
+  scan.value_label = view.quantity + " (mm)";
+  const std::vector<std::size_t> worst = worst_points(points, deviation_mm);
+  for (std::size_t k = 0; k < worst.size(); ++k) {
+    char label[64];
+    std::snprintf(label, sizeof label, "%zu: %+.3f mm", k + 1, deviation_mm[worst[k]]);
+    page.scene.add_callout(points[worst[k]], label);
+  }
   if (reference.has_faces()) {
     page.scene.add_mesh(view.reference_name, reference, {170, 176, 188}, view.reference_opacity);
   } else {
@@ -67,6 +113,7 @@ void add_deviation_view(Page& page, const std::vector<Eigen::Vector3d>& points, 
   Section section;
   section.title = view.title;
   section.tables.push_back(statistics_table(s, view));
+  if (!worst.empty()) section.tables.push_back(worst_table(points, deviation_mm, worst, view));
   std::vector<double> sorted;
   for (double d : deviation_mm) {
     if (std::isfinite(d)) sorted.push_back(d);

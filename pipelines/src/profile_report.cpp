@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 
 #include "conform/pipelines/profile_json.h"
 
@@ -132,6 +133,40 @@ html::Plot displacement_plot(const ProfileReportFigures& f) {
   return p;
 }
 
+// The part seen from above in the straight profile's frame (along the chord, across it), the across axis stretched
+// to the plot's height: a profile metres long and a few hundred millimetres wide is a line at true scale in 3D.
+html::Plot plan_plot(const ProfileReportFigures& f) {
+  html::Plot p = detail::line_plot("Plan view along the chord (across stretched to fit; nominal blue, mapped orange)",
+                                   "along the chord, from the edge's start (mm)", "across (mm)");
+  const ProfileStraightFrame& frame = f.straight;
+  const auto add = [&frame](html::Series* s, const Eigen::Vector3d& q) {
+    s->x.push_back((q - frame.origin).dot(frame.along));
+    s->y.push_back((q - frame.origin).dot(frame.across));
+  };
+  const auto gap = [](html::Series* s) {
+    s->x.push_back(std::numeric_limits<double>::quiet_NaN());
+    s->y.push_back(std::numeric_limits<double>::quiet_NaN());
+  };
+  html::Series edge = detail::series("edge curve", {}, {}, html::kDarkGrey);
+  for (const Eigen::Vector3d& q : f.edge_curve) add(&edge, q);
+  html::Series straight = detail::series("straight edge (nominal)", {}, {}, html::kGrey);
+  if (!f.edge_curve.empty()) add(&straight, f.edge_curve.front()), add(&straight, f.edge_curve.back());
+  html::Series nominal = detail::series("features, nominal", {}, {}, html::kBlue);
+  html::Series mapped = detail::series("features, mapped", {}, {}, html::kOrange);
+  html::Series nominal_marks = detail::series("", {}, {}, html::kBlue, true);
+  html::Series mapped_marks = detail::series("", {}, {}, html::kOrange, true);
+  for (const ProfileFeatureFigure& g : f.features) {
+    for (const Eigen::Vector3d& q : g.nominal) add(&nominal, q);
+    for (const Eigen::Vector3d& q : g.mapped) add(&mapped, q);
+    gap(&nominal), gap(&mapped);
+    // A dot at each feature's reference point, so that a feature narrower than a pixel still shows.
+    add(&nominal_marks, g.nominal_at), gap(&nominal_marks);
+    add(&mapped_marks, g.mapped_at), gap(&mapped_marks);
+  }
+  p.series = {straight, edge, nominal, mapped, nominal_marks, mapped_marks};
+  return p;
+}
+
 void add_scene(const ProfileReportFigures& f, html::Scene* scene) {
   if (!f.edge.empty()) scene->add_points("edge points", f.edge, html::kGrey, 3.0);
   if (!f.second_edge.empty()) scene->add_points("second edge points", f.second_edge, html::kGrey, 3.0);
@@ -180,6 +215,7 @@ html::Page profile_report(const ProfileJobOptions& options, const ProfileJobResu
   page.result = profile_json(options, job);
   const ProfileReportFigures f = profile_report_figures(job);
   add_scene(f, &page.scene);
+  page.sections.push_back({"Plan view", {}, {}, {plan_plot(f)}});
   page.sections.push_back({"Figures",
                            {"Nominal: a feature on the straight profile laid from the edge's origin along its "
                             "chord; displacement: how far the deformation moves it (centre, or first point)."},

@@ -95,6 +95,7 @@ std::vector<html::Plot> plots(const SicpReportFigures& f, const SicpJobOptions& 
   html::Plot confidence = detail::line_plot("Confidence per row", "row", "confidence");
   confidence.series = {detail::series("confidence", f.row, f.confidence, html::kPurple)};
   confidence.y_band = detail::band(0.0, o.compensation.checks.min_confidence, "untrusted below this");
+  confidence.y_band->reject = true;
   out.push_back(confidence);
   if (!f.segment.empty()) {
     html::Plot residual = detail::line_plot("Residual per segment", "segment", "ICP residual RMS (mm)");

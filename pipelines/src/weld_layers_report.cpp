@@ -123,7 +123,10 @@ void add_scene(const WeldLayersReportFigures& f, const WeldLayerResult& w, html:
     const double deepest = std::max(w.max_depth_mm, threshold + 1e-3);
     std::vector<html::Rgb> colours;
     for (const double d : f.depth_mm) colours.push_back(depth_colour(d, threshold, deepest));
-    scene->add_mesh("eroded surface", f.surface.vertices, f.surface.faces, html::kGrey, 1.0, colours);
+    html::SceneObject& surface =
+        scene->add_mesh("eroded surface", f.surface.vertices, f.surface.faces, html::kGrey, 1.0, colours);
+    surface.values = f.depth_mm;
+    surface.value_label = "depth (mm)";
     scene->set_colour_bar(html::make_colour_bar("depth below the reference (mm)",
                                                 "grey above the threshold, "
                                                 "yellow to dark red",
@@ -131,6 +134,11 @@ void add_scene(const WeldLayersReportFigures& f, const WeldLayerResult& w, html:
                                                 [&](double d) { return depth_colour(d, threshold, deepest); }));
   }
   if (!f.rims.empty()) scene->add_polylines("rims", f.rims, html::kRed);
+  for (const DamageRegion& r : w.damage.regions) {
+    char label[64];
+    std::snprintf(label, sizeof label, "crater %d: %.3f mm deep", r.id, r.max_depth_mm);
+    scene->add_callout(r.deepest, label);
+  }
   for (const WeldLayerFigure& l : f.layers) {
     scene->add_polylines("layer " + std::to_string(l.layer), l.paths, kLayerColours[(l.layer - 1) % 6]);
   }

@@ -1,5 +1,7 @@
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <cstdlib>
 #include <ctime>
 
@@ -83,18 +85,50 @@ std::string header_html(const Page& page) {
   return out + "</header>";
 }
 
+std::string css(const Rgb& c) {
+  char text[16];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c[0], c[1], c[2]);
+  return text;
+}
+
+// The layer's colour beside its checkbox: its one colour, or (coloured per point) the colour bar's scale when the
+// scene has one, else its first colours.
+std::string swatch(const SceneObject& s, const std::optional<ColourBar>& bar) {
+  std::string background = css(s.colour);
+  if (!s.colours.empty()) {
+    std::vector<Rgb> samples;
+    if (bar && !bar->stops.empty()) {
+      for (std::size_t k = 0; k < 5; ++k) samples.push_back(bar->stops[k * (bar->stops.size() - 1) / 4].second);
+    } else {
+      for (std::size_t k = 0; k < 3; ++k) samples.push_back(s.colours[k * (s.colours.size() - 1) / 2]);
+    }
+    background = "linear-gradient(90deg";
+    for (const Rgb& c : samples) background += "," + css(c);
+    background += ")";
+  }
+  char opacity[32] = "";
+  if (s.kind == ObjectKind::kMesh && s.opacity < 1.0) std::snprintf(opacity, sizeof opacity, ";opacity:%.2f", s.opacity);
+  return "<span class=\"swatch\" style=\"background:" + background + opacity + "\"></span>";
+}
+
 std::string view_html(const Scene& scene, const std::vector<SceneObject>& shown) {
   const Eigen::Vector3d o = scene.origin();
   std::string out = "<section id=\"view-section\"><h2>3D view</h2><div class=\"viewer\">";
-  out += "<div class=\"view\" id=\"conform-view\"></div><div class=\"side\">";
+  out += "<div class=\"view\" id=\"conform-view\"><div class=\"readout\" id=\"conform-readout\"></div></div>"
+         "<div class=\"side\">";
   out += "<button id=\"conform-reset\" type=\"button\">Reset view</button><h3>Layers</h3>";
   for (std::size_t i = 0; i < shown.size(); ++i) {
     const SceneObject& s = shown[i];
     out += "<label><input type=\"checkbox\" data-layer=\"" + std::to_string(i) + "\"" + (s.visible ? " checked" : "") +
-           "> " + escape_html(s.name) + "</label>";
+           "> " + swatch(s, scene.colour_bar()) + escape_html(s.name) + "</label>";
+  }
+  if (!scene.callouts().empty()) {
+    out += "<label><input type=\"checkbox\" id=\"conform-callouts\" checked> <span class=\"swatch\" "
+           "style=\"background:#fff;border-color:#111\"></span>callouts</label>";
   }
   if (scene.colour_bar()) out += detail::colour_bar_svg(*scene.colour_bar());
-  out += "</div></div><p class=\"note\">Drag: orbit; wheel: zoom; right drag or shift + drag: pan. Coordinates in mm, "
+  out += "</div></div><p class=\"note\">Drag: orbit; wheel: zoom; right drag or shift + drag: pan; click a point: its "
+         "coordinates (and value) in the box at the lower left. Coordinates in mm, "
          "relative to the origin (" +
          detail::format_g(o.x(), 10) + ", " + detail::format_g(o.y(), 10) + ", " + detail::format_g(o.z(), 10) +
          ") mm of the job's frame.</p>";

@@ -23,19 +23,21 @@ Plot histogram_plot(const std::vector<double>& values, std::size_t bins, double 
   plot.x_label = std::move(x_label);
   plot.y_label = "count";
   std::vector<double> counts(bins, 0.0);
-  std::size_t beyond = 0;
   const double width = (hi - lo) / static_cast<double>(bins);
   for (double v : values) {
     if (!std::isfinite(v)) continue;
     const double u = std::floor((v - lo) / width);
-    beyond += u < 0.0 || u >= static_cast<double>(bins);
+    plot.below += u < 0.0;
+    plot.above += u >= static_cast<double>(bins);
     counts[static_cast<std::size_t>(std::clamp(u, 0.0, static_cast<double>(bins - 1)))] += 1.0;
   }
   for (std::size_t b = 0; b < bins; ++b) {
     const double a = lo + width * static_cast<double>(b), z = lo + width * static_cast<double>(b + 1);
     plot.bars.push_back({a, z, counts[b], colour ? colour(0.5 * (a + z)) : kBlue});
   }
-  if (beyond > 0) plot.note = std::to_string(beyond) + " values beyond the axis are counted in the end bars";
+  if (plot.below + plot.above > 0) {
+    plot.note = std::to_string(plot.below + plot.above) + " values beyond the axis are counted in the end bars";
+  }
   return plot;
 }
 

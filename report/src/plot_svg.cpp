@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "report_detail.h"
 
@@ -93,18 +95,21 @@ void axes(std::string& out, const Frame& f, const Plot& plot) {
 void bands(std::string& out, const Frame& f, const Plot& plot) {
   const double bottom = kHeight - kBottom, right = kWidth - kRight;
   if (plot.x_band) {
+    const std::string kind = plot.x_band->reject ? " reject" : "";
     const double a = std::clamp(f.px(plot.x_band->lo), kLeft, right), b = std::clamp(f.px(plot.x_band->hi), kLeft, right);
-    out += "<rect class=\"band\" x=\"" + num(a) + "\" y=\"" + num(kTop) + "\" width=\"" + num(b - a) + "\" height=\"" +
+    out += "<rect class=\"band" + kind + "\" x=\"" + num(a) + "\" y=\"" + num(kTop) + "\" width=\"" + num(b - a) + "\" height=\"" +
            num(bottom - kTop) + "\"><title>" + escape_html(plot.x_band->label) + "</title></rect>";
-    out += "<text class=\"band-label\" x=\"" + num(b + 3) + "\" y=\"" + num(kTop + 12) + "\">" +
+    out += "<text class=\"band-label" + kind + "\" x=\"" + num(b + 3) + "\" y=\"" + num(kTop + 12) + "\">" +
            escape_html(plot.x_band->label) + "</text>";
   }
   if (plot.y_band) {
+    const std::string kind = plot.y_band->reject ? " reject" : "";
     const double a = std::clamp(f.py(plot.y_band->hi), kTop, bottom), b = std::clamp(f.py(plot.y_band->lo), kTop, bottom);
-    out += "<rect class=\"band\" x=\"" + num(kLeft) + "\" y=\"" + num(a) + "\" width=\"" + num(right - kLeft) +
+    out += "<rect class=\"band" + kind + "\" x=\"" + num(kLeft) + "\" y=\"" + num(a) + "\" width=\"" + num(right - kLeft) +
            "\" height=\"" + num(b - a) + "\"><title>" + escape_html(plot.y_band->label) + "</title></rect>";
-    out += "<text class=\"band-label\" x=\"" + num(kLeft + 4) + "\" y=\"" + num(a - 3) + "\">" +
-           escape_html(plot.y_band->label) + "</text>";
+    // Inside the band, at its top (above the frame's top it would meet the title).
+    out += "<text class=\"band-label" + kind + "\" x=\"" + num(kLeft + 4) + "\" y=\"" + num(std::min(a + 12, b - 2)) +
+           "\">" + escape_html(plot.y_band->label) + "</text>";
   }
 }
 
@@ -144,12 +149,25 @@ std::string plot_svg(const Plot& plot) {
   bands(out, f, plot);
   axes(out, f, plot);
   const double bottom = kHeight - kBottom;
-  for (const Bar& b : plot.bars) {
+  for (std::size_t i = 0; i < plot.bars.size(); ++i) {
+    const Bar& b = plot.bars[i];
     if (!(b.count > 0)) continue;
+    // The end bars also hold the values beyond the axis: outlined, and labelled below.
+    const bool overflow = (i == 0 && plot.below > 0) || (i + 1 == plot.bars.size() && plot.above > 0);
     const double x0 = f.px(b.lo), x1 = f.px(b.hi), top = f.py(b.count);
-    out += "<rect x=\"" + num(x0 + 0.5) + "\" y=\"" + num(top) + "\" width=\"" + num(std::max(x1 - x0 - 1.0, 0.5)) +
-           "\" height=\"" + num(bottom - top) + "\" fill=\"" + css(b.colour) + "\"><title>[" + format_g(b.lo, 5) +
-           ", " + format_g(b.hi, 5) + "): " + format_g(b.count, 10) + "</title></rect>";
+    out += "<rect class=\"bar" + std::string(overflow ? " overflow" : "") + "\" x=\"" + num(x0 + 0.5) + "\" y=\"" +
+           num(top) + "\" width=\"" + num(std::max(x1 - x0 - 1.0, 0.5)) + "\" height=\"" + num(bottom - top) +
+           "\" fill=\"" + css(b.colour) + "\"><title>[" + format_g(b.lo, 5) + ", " + format_g(b.hi, 5) +
+           "): " + format_g(b.count, 10) + "</title></rect>";
+  }
+  if (!plot.bars.empty() && plot.below > 0) {
+    out += "<text class=\"overflow-label\" x=\"" + num(kLeft + 4) + "\" y=\"" + num(kTop + 26) + "\">&#9664; " +
+           std::to_string(plot.below) + " below " + format_g(plot.bars.front().lo, 3) + " (in the first bar)</text>";
+  }
+  if (!plot.bars.empty() && plot.above > 0) {
+    out += "<text class=\"overflow-label\" x=\"" + num(kWidth - kRight - 4) + "\" y=\"" + num(kTop + 26) +
+           "\" text-anchor=\"end\">" + std::to_string(plot.above) + " above " + format_g(plot.bars.back().hi, 3) +
+           " (in the last bar) &#9654;</text>";
   }
   for (double m : plot.x_marks) {
     if (m < f.x.lo || m > f.x.hi) continue;
@@ -162,18 +180,63 @@ std::string plot_svg(const Plot& plot) {
   return out;
 }
 
+namespace {
+
+// Words of `text` on lines of at most `width` characters (a word longer than that stands alone).
+std::vector<std::string> wrapped(const std::string& text, std::size_t width) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  const auto flush_word = [&] {
+    if (word.empty()) return;
+    if (!line.empty() && line.size() + 1 + word.size() > width) lines.push_back(line), line.clear();
+    line += (line.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ') {
+      flush_word();
+    } else {
+      word += c;
+    }
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+std::vector<double> spread_labels(std::vector<double> y, double gap, double lo, double hi) {
+  // y ascending: push each label down below the one above it, then back up from the bottom limit.
+  for (std::size_t i = 1; i < y.size(); ++i) y[i] = std::max(y[i], y[i - 1] + gap);
+  if (!y.empty() && y.back() > hi) y.back() = hi;
+  for (std::size_t i = y.size(); i-- > 1;) y[i - 1] = std::min(y[i - 1], y[i] - gap);
+  if (!y.empty() && y.front() < lo) {
+    y.front() = lo;
+    for (std::size_t i = 1; i < y.size(); ++i) y[i] = std::max(y[i], y[i - 1] + gap);
+  }
+  return y;
+}
+
+}  // namespace
+
 std::string colour_bar_svg(const ColourBar& bar) {
-  // Vertical: max at the top. 90 x 260.
-  constexpr double x = 10, w = 22, top = 28, h = 210;
+  // Vertical, max at the top; 150 wide (the side column), as tall as the wrapped title and caption need.
+  constexpr double x = 10, w = 22, h = 210, kWide = 150, kLine = 14, kLabelGap = 13;
+  const std::vector<std::string> title = wrapped(bar.title, 22), caption = wrapped(bar.map, 28);
+  const double top = 8 + kLine * static_cast<double>(title.size()) + 6;
+  const double height = top + h + 10 + 12 * static_cast<double>(caption.size()) + 4;
   const double span = bar.max - bar.min > 0.0 ? bar.max - bar.min : 1.0;
   const auto y = [&](double v) { return top + (bar.max - v) / span * h; };
-  std::string out = "<svg class=\"colour-bar\" viewBox=\"0 0 150 266\">";
+  std::string out = "<svg class=\"colour-bar\" viewBox=\"0 0 " + num(kWide) + " " + num(height) + "\" width=\"" +
+                    num(kWide) + "\" height=\"" + num(height) + "\">";
   out += "<defs><linearGradient id=\"cbar\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
   for (const auto& [v, c] : bar.stops) {
     out += "<stop offset=\"" + num((v - bar.min) / span) + "\" stop-color=\"" + css(c) + "\"/>";
   }
   out += "</linearGradient></defs>";
-  out += "<text x=\"4\" y=\"14\" class=\"title\">" + escape_html(bar.title) + "</text>";
+  for (std::size_t i = 0; i < title.size(); ++i) {
+    out += "<text x=\"4\" y=\"" + num(8 + kLine * static_cast<double>(i + 1) - 3) + "\" class=\"title\">" +
+           escape_html(title[i]) + "</text>";
+  }
   out += "<rect x=\"" + num(x) + "\" y=\"" + num(top) + "\" width=\"" + num(w) + "\" height=\"" + num(h) +
          "\" fill=\"url(#cbar)\" stroke=\"#444\"/>";
   std::vector<double> labels = {bar.max, 0.5 * (bar.min + bar.max), bar.min};
@@ -183,11 +246,21 @@ std::string colour_bar_svg(const ColourBar& bar) {
            "\" fill=\"none\" stroke=\"#000\" stroke-dasharray=\"3 2\"/>";
     labels = {bar.max, bar.band->second, bar.band->first, bar.min};
   }
-  for (double v : labels) {
-    out += "<text x=\"" + num(x + w + 6) + "\" y=\"" + num(y(v) + 4) + "\">" + format_g(v, 4) + "</text>";
+  // Each label beside its value's height, moved apart where they would overlap, with a leader to its tick.
+  std::vector<double> ticks;
+  for (double v : labels) ticks.push_back(y(v));
+  const std::vector<double> at = spread_labels(ticks, kLabelGap, top - 4, top + h + 4);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    out += "<line class=\"tick\" x1=\"" + num(x + w) + "\" y1=\"" + num(ticks[i]) + "\" x2=\"" + num(x + w + 4) +
+           "\" y2=\"" + num(at[i]) + "\" stroke=\"#444\"/>";
+    out += "<text class=\"label\" x=\"" + num(x + w + 6) + "\" y=\"" + num(at[i] + 4) + "\">" +
+           format_g(labels[i], 4) + "</text>";
   }
-  out += "<text x=\"4\" y=\"258\" font-size=\"10\">" + escape_html(bar.map) + "</text></svg>";
-  return out;
+  for (std::size_t i = 0; i < caption.size(); ++i) {
+    out += "<text class=\"caption\" x=\"4\" y=\"" + num(top + h + 10 + 12 * static_cast<double>(i + 1) - 2) +
+           "\" font-size=\"10\">" + escape_html(caption[i]) + "</text>";
+  }
+  return out + "</svg>";
 }
 
 }  // namespace conform::html::detail

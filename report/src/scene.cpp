@@ -152,6 +152,7 @@ Eigen::Vector3d Scene::origin() const {
 std::vector<SceneObject> Scene::thinned() const {
   std::vector<SceneObject> out;
   for (const SceneObject& o : objects_) {
+    check_per_item(o.name, o.positions.size(), o.values.size(), "values");
     std::size_t total = 0;
     for (const SceneObject& other : objects_) {
       if (other.kind == o.kind) total += items_of(other);
@@ -193,10 +194,12 @@ SceneObject thin_by_stride(const SceneObject& object, std::size_t max_items) {
     SceneObject out = object;
     out.positions.clear();
     out.colours.clear();
+    out.values.clear();
     for (std::size_t i = 0; i + 1 < n; i += 2 * k) {
       for (std::size_t j = i; j < i + 2; ++j) {
         out.positions.push_back(object.positions[j]);
         if (!object.colours.empty()) out.colours.push_back(object.colours[j]);
+        if (!object.values.empty()) out.values.push_back(object.values[j]);
       }
     }
     return out;
@@ -206,9 +209,11 @@ SceneObject thin_by_stride(const SceneObject& object, std::size_t max_items) {
   out.positions.clear();
   out.colours.clear();
   out.directions.clear();
+  out.values.clear();
   for (std::size_t i = 0; i < n; i += k) {
     out.positions.push_back(object.positions[i]);
     if (!object.colours.empty()) out.colours.push_back(object.colours[i]);
+    if (!object.values.empty()) out.values.push_back(object.values[i]);
     if (!object.directions.empty()) out.directions.push_back(object.directions[i]);
   }
   return out;
@@ -231,6 +236,7 @@ SceneObject thin_mesh(const SceneObject& mesh, std::size_t max_triangles) {
     SceneObject out = mesh;
     out.positions.clear();
     out.colours.clear();
+    out.values.clear();
     out.triangles.clear();
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       const Eigen::Vector3d c = ((mesh.positions[i] - lo) / cell).array().floor();
@@ -242,6 +248,7 @@ SceneObject thin_mesh(const SceneObject& mesh, std::size_t max_triangles) {
       if (inserted) {
         out.positions.push_back(mesh.positions[i]);
         if (!mesh.colours.empty()) out.colours.push_back(mesh.colours[i]);
+        if (!mesh.values.empty()) out.values.push_back(mesh.values[i]);
       }
       remap[i] = it->second;
     }

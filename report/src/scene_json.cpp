@@ -42,6 +42,13 @@ std::string directions_base64(const std::vector<Eigen::Vector3d>& directions) {
   return base64(bytes);
 }
 
+std::string values_base64(const std::vector<double>& values) {
+  std::string bytes;
+  bytes.reserve(4 * values.size());
+  for (double v : values) append_float(bytes, v);
+  return base64(bytes);
+}
+
 std::string colours_base64(const std::vector<Rgb>& colours) {
   std::string bytes;
   bytes.reserve(3 * colours.size());
@@ -91,9 +98,20 @@ std::string scene_json(const Scene& scene, const std::vector<SceneObject>& thinn
       j["indices"] = indices_base64(o.triangles);
     }
     if (!o.directions.empty()) j["directions"] = directions_base64(o.directions);
+    if (!o.values.empty()) {
+      j["values"] = values_base64(o.values);
+      j["value_label"] = o.value_label;
+    }
     objects.push_back(std::move(j));
   }
-  nlohmann::json j = {{"origin", {origin.x(), origin.y(), origin.z()}}, {"objects", std::move(objects)}};
+  nlohmann::json callouts = nlohmann::json::array();
+  for (const Callout& c : scene.callouts()) {
+    const Eigen::Vector3d local = c.position - origin;
+    callouts.push_back({{"at", {local.x(), local.y(), local.z()}}, {"label", c.label}});
+  }
+  nlohmann::json j = {{"origin", {origin.x(), origin.y(), origin.z()}},
+                      {"objects", std::move(objects)},
+                      {"callouts", std::move(callouts)}};
   return j.dump();
 }
 

@@ -34,6 +34,7 @@ struct Band {
   double lo = 0.0;
   double hi = 0.0;
   std::string label;  // "tolerance +-0.1 mm"
+  bool reject = false;  // shaded red (values here are not acceptable), else green (the acceptable range)
 };
 
 struct Plot {
@@ -46,10 +47,15 @@ struct Plot {
   std::optional<Band> y_band;   // shaded between y = lo and hi
   std::vector<double> x_marks;  // vertical lines (e.g. x = 0)
   std::string note;             // one line under the plot ("12 points beyond the axis are in the end bars")
+  // A histogram's values beyond its axis, counted in the first (below) and last (above) bar; those bars are marked
+  // and labelled on the plot ("81 below -0.31").
+  std::size_t below = 0;
+  std::size_t above = 0;
 };
 
 // A histogram of the finite `values` in `bins` (>= 1) equal bins over [lo, hi] (values outside go into the end bins,
-// and the note says how many); each bar coloured by `colour` of its centre (empty: kBlue). lo < hi.
+// counted in below / above, and the note says how many); each bar coloured by `colour` of its centre (empty: kBlue).
+// lo < hi.
 Plot histogram_plot(const std::vector<double>& values, std::size_t bins, double lo, double hi, std::string title,
                     std::string x_label, const std::function<Rgb(double)>& colour = {});
 

@@ -48,6 +48,10 @@ struct SceneObject {
   double length_mm = 1.0;    // arrows: drawn length
   bool closed = false;       // polyline: the last point joins the first
   bool pieces = false;       // polyline: positions are pairs, each a segment (several lines in one layer)
+  // Optional: one value per position (e.g. the signed deviation), shown with the coordinates when the reader clicks
+  // the point; `value_label` names it with its unit ("deviation (mm)").
+  std::vector<double> values;
+  std::string value_label;
   std::size_t original_count = 0;  // points or triangles before thinning
 };
 
@@ -73,6 +77,12 @@ ColourBar make_colour_bar(std::string title, std::string map, double min, double
   }
   return bar;
 }
+
+// A labelled marker the view keeps beside a point (e.g. "1: +1.482 mm" at the worst point), with a leader line.
+struct Callout {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // mm, the job's frame
+  std::string label;
+};
 
 class Scene {
  public:
@@ -110,6 +120,11 @@ class Scene {
                           const std::vector<Eigen::Vector3d>& directions, double length_mm, Rgb colour);
 
   void set_colour_bar(ColourBar bar) { colour_bar_ = std::move(bar); }
+  // Callouts are drawn over the view (a layer of their own, "callouts"), in the order added.
+  void add_callout(const Eigen::Vector3d& position, std::string label) {
+    callouts_.push_back({position, std::move(label)});
+  }
+  const std::vector<Callout>& callouts() const { return callouts_; }
   const std::optional<ColourBar>& colour_bar() const { return colour_bar_; }
 
   const std::vector<SceneObject>& objects() const { return objects_; }
@@ -131,6 +146,7 @@ class Scene {
   Limits limits_;
   std::vector<SceneObject> objects_;
   std::optional<ColourBar> colour_bar_;
+  std::vector<Callout> callouts_;
 };
 
 // Mesh thinning by vertex clustering: vertices merged per cell of a cubic grid (the first vertex of a cell stands
