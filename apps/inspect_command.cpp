@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "cad_options.h"
 #include "command.h"
 #include "conform/core/units.h"
@@ -33,6 +35,11 @@ class InspectCommand : public Command {
                  "default: the scan is already in the part frame");
     c.add_option("--align", align_, "best-fit: align the scan to the CAD first (conform align's defaults)")
         ->check(CLI::IsMember({"best-fit"}));
+    c.add_option("--datums", options_.datum_faces,
+                 "Datum faces A,B,C (plane face ids, primary first; 1 to 3): after the initial pose the scan is moved "
+                 "by the 3-2-1 datum fit (the primary's plane onto its nominal, the secondary turned and moved across "
+                 "it, the tertiary along the line left free) and every figure is in the datum frame")
+        ->delimiter(',');
     c.add_option("--max-distance", options_.max_distance_mm,
                  "A point farther than this from the CAD is on no face, mm; default 0: automatic, the larger of 0.5 "
                  "mm and 20 times the scan's noise");
@@ -84,6 +91,14 @@ class InspectCommand : public Command {
     std::printf("alignment    %s\n", r.alignment == "transform" ? options_.transform_path.c_str()
                                                                  : r.alignment.c_str());
     if (!r.align_summary.empty()) std::printf("best fit     %s\n", r.align_summary.c_str());
+    if (!options_.datum_faces.empty()) {
+      std::printf("datums       faces");
+      for (const std::size_t id : options_.datum_faces) std::printf(" %zu", id);
+      std::printf(": turned %.4f deg from the initial pose, each moved along its normal by",
+                  Eigen::AngleAxisd(r.T_datum_initial.linear()).angle() / kRadPerDeg);
+      for (const double m : r.datum_moved_mm) std::printf(" %.4f", m);
+      std::printf(" mm\n");
+    }
     if (r.faces.empty()) return;
     std::printf("assigned     %zu of %zu points; on no face: %zu beyond %.3g mm%s, %zu by their normal\n",
                 r.assigned, r.scan_points, r.beyond_distance, r.max_distance_mm,

@@ -18,6 +18,7 @@
 #include "conform/pipelines/align.h"
 #include "conform/registration/surface_noise.h"
 #include "inspect_features.h"
+#include "inspect_datums.h"
 #include "inspect_faces_csv.h"
 #include "inspect_tolerances.h"
 
@@ -102,6 +103,7 @@ void assign_points(const std::vector<Eigen::Vector3d>& points, const std::vector
   const TriangleIndex index(cad.mesh);
   const double min_cosine = std::cos(options.max_normal_angle_rad);
   result.point_face.assign(points.size(), 0);
+  result.assigned = result.beyond_distance = result.normal_mismatch = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const SurfacePoint s = index.closest(points[i], result.max_distance_mm);
     if (!s.found()) {
@@ -139,6 +141,42 @@ std::vector<double> mesh_deviations(const std::vector<Eigen::Vector3d>& points, 
   const DeviationResult d = compute_deviation(off_analytic, cad.mesh, deviation);
   for (std::size_t k = 0; k < which.size(); ++k) out[which[k]] = d.deviation_mm[k];
   return out;
+}
+
+void check_datum_ids(const InspectOptions& options, std::size_t face_count) {
+  for (std::size_t k = 0; k < options.datum_faces.size(); ++k) {
+    const std::size_t id = options.datum_faces[k];
+    if (id < 1 || id > face_count) {
+      throw Error("--datums: face " + std::to_string(id) + " is not one of the CAD's faces 1.." +
+                  std::to_string(face_count));
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      if (options.datum_faces[j] == id) throw Error("--datums: face " + std::to_string(id) + " is given twice");
+    }
+  }
+}
+
+// The 3-2-1 datum fit on the points assigned at the initial pose; the scan and its normals moved by it, and assigned
+// again.
+void apply_datums(const CadFaces& cad, const InspectOptions& options, std::vector<Eigen::Vector3d>& points,
+                  std::vector<Eigen::Vector3d>& normals, InspectResult& result) {
+  std::vector<detail::DatumInput> datums;
+  for (const std::size_t id : options.datum_faces) {
+    detail::DatumInput d;
+    d.face_id = id;
+    d.nominal = cad.faces[id - 1];
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (result.point_face[i] == id) d.points.push_back(points[i]);
+    }
+    datums.push_back(std::move(d));
+  }
+  const detail::DatumFit fit = detail::fit_datums(datums);
+  result.T_datum_initial = fit.T_datum_initial;
+  result.datum_moved_mm = fit.moved_mm;
+  result.T_ref_scan = fit.T_datum_initial * result.T_ref_scan;
+  for (Eigen::Vector3d& p : points) p = fit.T_datum_initial * p;
+  for (Eigen::Vector3d& n : normals) n = fit.T_datum_initial.linear() * n;
+  assign_points(points, normals, cad, options, result);
 }
 
 void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
@@ -191,6 +229,7 @@ InspectResult run_inspect(const InspectOptions& options) {
                                                     ? std::vector<FaceTolerance>()
                                                     : detail::read_face_tolerances(options.tolerances_path,
                                                                                    cad.faces.size());
+  check_datum_ids(options, cad.faces.size());
 
   if (!options.transform_path.empty()) {
     result.alignment = "transform";
@@ -217,6 +256,7 @@ InspectResult run_inspect(const InspectOptions& options) {
   for (const auto& n : estimate_normals(to_cloud(scan), pca)) normals.emplace_back(n.normal_x, n.normal_y, n.normal_z);
 
   assign_points(scan.vertices, normals, cad, options, result);
+  if (!options.datum_faces.empty()) apply_datums(cad, options, scan.vertices, normals, result);
   measure_faces(scan.vertices, normals, cad, options, result);
   const double unassigned = static_cast<double>(result.scan_points - result.assigned);
   if (unassigned > 0.05 * static_cast<double>(result.scan_points)) {

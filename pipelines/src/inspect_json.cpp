@@ -122,6 +122,14 @@ nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& 
                        "holding all but form_trim of the residuals, half trimmed at each end; form_full_mm untrimmed"},
                       {"faces", faces},
                       {"out_faces", json_path_or_null(r.out_faces_path)}};
+  if (!options.datum_faces.empty()) {
+    j["datums"] = {{"faces", options.datum_faces},
+                   {"T_datum_initial", json_of(r.T_datum_initial)},
+                   {"moved_mm", r.datum_moved_mm},
+                   {"rotation_deg", Eigen::AngleAxisd(r.T_datum_initial.linear()).angle() * 57.29577951308232}};
+  } else {
+    j["datums"] = nullptr;
+  }
   j["tolerances"] = json_path_or_null(options.tolerances_path);
   j["verdict"] = r.verdict.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.verdict);
   if (r.alignment == "best-fit") {

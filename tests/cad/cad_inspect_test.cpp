@@ -246,6 +246,61 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   EXPECT_NE(bad.err.find("bad.csv:2: face 9 is not one of the CAD's faces 1..8"), std::string::npos) << bad.err;
 }
 
+// The best fit of the whole scan is pulled by the bowed top and the tilted side; the 3-2-1 datum fit on the bottom
+// (A), the side x = 0 (B) and the side y = 60 (C), none of them in error, puts the scan back where the truth is.
+TEST(InspectCommand, DatumFitUndoesTheBestFitsBias) {
+  test::TempDir dir;
+  const TopoDS_Shape part = block_with_two_holes();
+  const std::string step = dir.file("part.step");
+  test::write_cad(part, step, test::CadFormat::kStep, "MM");
+  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  const GeneratedScan scan = generate(part, cad);
+  Eigen::Isometry3d T_scan_ref = Eigen::Isometry3d::Identity();
+  T_scan_ref.rotate(Eigen::AngleAxisd(0.5 * M_PI / 180.0, Eigen::Vector3d(3, -1, 2).normalized()));
+  T_scan_ref.translation() = Eigen::Vector3d(0.4, 0.3, -0.5);
+  Mesh cloud;
+  for (const Eigen::Vector3d& p : scan.points) cloud.vertices.push_back(T_scan_ref * p);
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(dir.file("scan.ply"), cloud, precise);
+  std::size_t bottom = 0, side_x0 = 0, side_y60 = 0, top = 0, tilted = 0, shifted = 0;
+  for (std::size_t f = 0; f < cad.faces.size(); ++f) {
+    const CadFace& face = cad.faces[f];
+    const Role role = role_of(face);
+    if (role == Role::kBottom) bottom = f + 1;
+    if (role == Role::kTop) top = f + 1;
+    if (role == Role::kTiltedSide) tilted = f + 1;
+    if (role == Role::kShiftedHole) shifted = f + 1;
+    if (face.type == CadSurfaceType::kPlane && face.axis.x() < -0.5) side_x0 = f + 1;
+    if (face.type == CadSurfaceType::kPlane && face.axis.y() > 0.5) side_y60 = f + 1;
+  }
+  ASSERT_TRUE(bottom && side_x0 && side_y60 && top && tilted && shifted);
+  const std::string datums = std::to_string(bottom) + "," + std::to_string(side_x0) + "," + std::to_string(side_y60);
+  std::vector<nlohmann::json> runs;
+  for (const bool with_datums : {false, true}) {
+    std::vector<std::string> args = {"inspect", "--scan", dir.file("scan.ply"), "--reference", step, "--align",
+                                     "best-fit", "--json"};
+    if (with_datums) args.insert(args.end(), {"--datums", datums});
+    const test::RunResult r = test::run(CONFORM_EXE, args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    runs.push_back(nlohmann::json::parse(r.out));
+    EXPECT_NE(runs.back().at("align_trust"), "no");
+  }
+  const nlohmann::json& fit = runs[0].at("faces");
+  const nlohmann::json& datum = runs[1].at("faces");
+  // The truth: the top's mean deviation is its bow's mean, the bottom's 0, the tilt 0.1 deg, the shift 0.1 mm.
+  const double top_truth = mean(scan.truth[top - 1]);
+  EXPECT_NEAR(datum[top - 1].at("mean_mm").get<double>(), top_truth, 0.002);
+  EXPECT_NEAR(datum[bottom - 1].at("mean_mm").get<double>(), 0.0, 0.001);
+  EXPECT_NEAR(datum[tilted - 1].at("angle_to_nominal_deg").get<double>(), kTiltDeg, 0.005);
+  EXPECT_NEAR(datum[shifted - 1].at("axis_offset_mm").get<double>(), kShift, 0.003);
+  // The best fit is measurably off the truth on the same faces (which is why datums exist).
+  EXPECT_GT(std::abs(fit[top - 1].at("mean_mm").get<double>() - top_truth), 0.005);
+  const nlohmann::json& d = runs[1].at("datums");
+  EXPECT_EQ(d.at("faces").size(), 3u);
+  EXPECT_GT(d.at("rotation_deg").get<double>(), 0.001);
+}
+
 TEST(InspectCommand, BadUsageIsExitTwo) {
   test::TempDir dir;
   const test::RunResult mesh_reference =

@@ -43,6 +43,9 @@ struct InspectOptions {
   // Fewer points on a face: its deviation figures are given, its feature is not fitted (nor its form measured).
   std::size_t min_fit_points = 30;
 
+  // Datum faces (ids, primary first; 1 to 3 planes): after the initial pose (transform, best fit or none) the scan is
+  // moved by the 3-2-1 datum fit (pipelines/src/inspect_datums.h) and every figure is in the datum frame.
+  std::vector<std::size_t> datum_faces;
   // .csv with columns face, lower_mm, upper_mm, form_mm (pipelines/src/inspect_tolerances.h): pass/fail per face;
   // empty: no verdict.
   std::string tolerances_path;
@@ -116,6 +119,10 @@ struct InspectResult {
   std::string alignment = "none";    // "none", "transform", "best-fit"
   std::string align_trust;           // best-fit: "yes", "check" or "no" (pipelines/align.h); "no" stops the job
   std::string align_summary;
+  // With datums: the correction the datum fit applied on top of the initial pose (T_ref_scan includes it), and how
+  // far each datum's fitted plane moved along its nominal normal, mm.
+  Eigen::Isometry3d T_datum_initial = Eigen::Isometry3d::Identity();
+  std::vector<double> datum_moved_mm;
   bool ok = false;                   // the job ran to its figures (false: best fit refused, or no point assigned)
   std::string termination;           // "ok", or why not
   std::vector<FaceInspection> faces;   // every face of the CAD, by id
