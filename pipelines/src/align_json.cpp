@@ -81,6 +81,7 @@ nlohmann::json starts_json(const AlignResult& r) {
                       {"only_share", s.only_share},
                       {"separated", s.separated},
                       {"same_up_to_free", s.same_up_to_free},
+                      {"same_when_settled", s.same_when_settled},
                       {"T_ref_scan", pose}});
   }
   return starts;

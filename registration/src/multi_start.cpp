@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include "conform/core/error.h"
@@ -240,6 +241,8 @@ bool MultiStartOptions::IsValid(std::string* error) const {
   } else if (!(distinct_deg > 0.0) || !std::isfinite(distinct_deg) || !(distinct_mm >= 0.0) ||
              !std::isfinite(distinct_mm)) {
     why = "distinct_deg must be finite and > 0, distinct_mm finite and >= 0";
+  } else if (settle_iterations < 0) {
+    why = "settle_iterations must be >= 0";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -332,16 +335,22 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     result.free_motions =
         symmetric_motions(subset, reference, best.T_probe, constraints[b], masks[b], step_mm, reach, options);
   }
+  // Where a probe's pose settles, run on to convergence: the best's once, on demand.
+  IcpOptions settle = options.probe;
+  settle.progress = nullptr;
+  settle.max_iterations = options.settle_iterations;
+  const auto settled = [&](const Eigen::Isometry3d& T) { return icp(subset, reference, T, settle).T_ref_scan; };
+  std::optional<Eigen::Isometry3d> best_settled;
+  const auto apart = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return rotation_angle(b * a.inverse()) > far_rad || (b * centre - a * centre).norm() > far_mm;
+  };
   for (std::size_t j = 0; j < result.starts.size(); ++j) {
     StartReport& other = result.starts[j];
     if (static_cast<int>(j) == result.best) continue;
     const bool close = by_share ? other.inlier_share >= (1.0 - options.share_margin) * best.inlier_share
                                 : other.score_mm <= (1.0 + options.ambiguity) * best.score_mm;
     if (!close) continue;
-    const Eigen::Isometry3d between = other.T_probe * best.T_probe.inverse();
-    const bool elsewhere =
-        rotation_angle(between) > far_rad || (other.T_probe * centre - best.T_probe * centre).norm() > far_mm;
-    if (!elsewhere) continue;
+    if (!apart(best.T_probe, other.T_probe)) continue;
     if (!result.free_motions.empty() &&
         same_up_to_free(best.T_probe, other.T_probe, result.free_motions, centre, far_rad, far_mm)) {
       other.same_up_to_free = true;
@@ -358,6 +367,13 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
       other.separated = separated(best_only, other_only, subset.size(), options);
       if (other.separated) continue;
+    }
+    if (options.settle_iterations > 0) {
+      if (!best_settled) best_settled = settled(best.T_probe);
+      if (!apart(*best_settled, settled(other.T_probe))) {
+        other.same_when_settled = true;
+        continue;
+      }
     }
     if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
       result.ambiguous = true;

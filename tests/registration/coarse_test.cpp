@@ -207,6 +207,42 @@ TEST(MultiStart, TheReferencesOwnSymmetryMakesAPartialScanAmbiguous) {
   EXPECT_GT(r.starts.size(), 3u);  // the probes ran
 }
 
+// Two starts on either side of the one minimum, their probes cut short (one iteration) before they meet: elsewhere
+// and close in share as the probes ended, they are the same answer once run on (settle_iterations), not an
+// ambiguity; without settling they are (the false ambiguity of a real bunny pair, multi_start.h).
+TEST(MultiStart, ProbesThatStopShortOfOneMinimumAreSettledBeforeTheyMakeItAmbiguous) {
+  WorkpieceOptions block;
+  block.noise_mm = 0.02;
+  Mesh reference;
+  reference.vertices = workpiece_samples(block);
+  block.seed = 2;
+  block.x_from = 0.2;
+  const std::vector<Eigen::Vector3d> scan = workpiece_samples(block);
+  const auto turned = [](double deg) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return T;
+  };
+  const std::vector<CoarseStart> starts = {{"plus", turned(10.0)}, {"minus", turned(-10.0)}};
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 20.0;
+  options.probe.max_iterations = 1;
+  options.inlier_distance_mm = 0.1;
+  options.share_margin = 0.9;  // any share is close: the test is about where the probes end
+  options.probe_reference_symmetry = false;
+  options.separation_z = 0.0;     // never told apart by their inliers
+  options.free_step_share = 0.0;  // nor by a free motion (the top face turns into itself)
+  const IcpReference ref(reference);
+  options.settle_iterations = 0;
+  const MultiStartResult cut = rank_starts(scan, ref, starts, options);
+  ASSERT_TRUE(cut.ambiguous);  // the probes ended more than distinct_deg apart
+  options.settle_iterations = 60;
+  const MultiStartResult settled = rank_starts(scan, ref, starts, options);
+  EXPECT_FALSE(settled.ambiguous);
+  const StartReport& other = settled.starts[static_cast<std::size_t>(1 - settled.best)];
+  EXPECT_TRUE(other.same_when_settled);
+}
+
 TEST(Downsample, MedianSpacingOfAGrid) {
   const std::vector<Eigen::Vector3d> grid = box_surface({120, 80, 40}, 2.5);
   EXPECT_NEAR(median_spacing(grid, KdTree(grid)), 2.5, 1e-5);  // float tree: 1e-5 mm

@@ -51,6 +51,12 @@ struct MultiStartOptions {
   // them is the same answer (same_up_to_free), not an ambiguity. 0: no test.
   double free_step_share = 0.05;
 
+  // A close start that ended elsewhere is run on from its probe's pose for at most this many more iterations, and
+  // the best likewise, before it can make the result ambiguous: a probe stops after probe.max_iterations, and on a
+  // real scan pair three of six FPFH probes stopped 5-9 deg short of the one minimum they all reach (bunny 270 -> 0,
+  // docs/measurements/real_pairs.md). 0: compared as the probes ended.
+  int settle_iterations = 60;
+
   MultiStartOptions() { probe.max_iterations = 15; }
   bool IsValid(std::string* error) const;
 };
@@ -69,6 +75,9 @@ struct StartReport {
   double only_share = 0.0;
   bool separated = false;
   bool same_up_to_free = false;  // differs from the best only along MultiStartResult::free_motions
+  // A close start elsewhere whose probe, and the best's, run on to convergence (MultiStartOptions::settle_iterations)
+  // meet: the probes had stopped short on the way to one minimum, not at two.
+  bool same_when_settled = false;
 };
 
 struct MultiStartResult {
