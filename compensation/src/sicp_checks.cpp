@@ -32,7 +32,7 @@ void judge_segments(const SicpResult& r, const SicpCheckOptions& o, double scan_
     if (f.usable && f.neighbourhood_points >= o.min_edge_points) rms.push_back(f.rms_mm);
   }
   c.noise_mm = scan_noise_mm > 0.0 ? scan_noise_mm : (rms.empty() ? r.coarse.rms_mm : median(rms));
-  const double noise = std::max(c.noise_mm, 1e-6);
+  const double noise = std::max({c.noise_mm, o.min_noise_mm, 1e-6});
   for (std::size_t k = 0; k < r.segments.size(); ++k) {
     const SicpSegmentFit& f = r.segments[k];
     const bool blind = f.neighbourhood_points < o.min_edge_points;
@@ -236,6 +236,61 @@ std::vector<bool> judge_row_steps(const Trajectory& nominal, const Trajectory& t
   return jump;
 }
 
+// Rows where the scanned surface departs from the model's (sicp_surface_misfit): the fitted offset along the tool
+// axis, the tool normal's error along the path or the local mean residual against the neighbours' beyond its limit,
+// and misfit_significance standard errors clear of zero. The warning names the stretches (rows, length).
+void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t, const SicpCheckOptions& o,
+                  SicpCheck& c) {
+  if (misfit.empty()) return;
+  if (misfit.size() != c.rows.size())
+    throw Error("S-ICP checks: the surface misfit differs from the trajectory's rows");
+  const double k = o.misfit_significance;
+  for (std::size_t i = 0; i < misfit.size(); ++i) {
+    const SicpRowMisfit& m = misfit[i];
+    SicpRowReport& row = c.rows[i];
+    if (m.points == 0) continue;
+    row.surface_offset_mm = m.offset_mm;
+    row.normal_error_deg = m.along_error_deg;
+    row.local_offset_mm = m.local_offset_mm;
+    const bool offset = std::abs(m.offset_mm) > k * m.offset_se_mm;
+    const bool tilt = m.along_z > k;
+    const bool local = m.local_offset_se_mm > 0.0 && std::abs(m.local_offset_mm) > k * m.local_offset_se_mm;
+    if (offset) c.max_surface_offset_mm = std::max(c.max_surface_offset_mm, std::abs(m.offset_mm));
+    if (tilt) c.max_normal_error_deg = std::max(c.max_normal_error_deg, m.along_error_deg);
+    if (local) c.max_local_offset_mm = std::max(c.max_local_offset_mm, std::abs(m.local_offset_mm));
+    row.misfit = (offset && std::abs(m.offset_mm) > o.max_surface_offset_mm) ||
+                 (tilt && m.along_error_deg > o.max_normal_error_deg) ||
+                 (local && std::abs(m.local_offset_mm) > o.max_local_offset_mm);
+    if (row.misfit) ++c.misfit_rows;
+  }
+  if (c.misfit_rows == 0) return;
+  std::string stretches;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < c.rows.size();) {
+    if (!c.rows[i].misfit) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    double arc = 0.0;
+    while (end + 1 < c.rows.size() && c.rows[end + 1].misfit) arc += (t.points[end + 1] - t.points[end]).norm(), ++end;
+    if (++count <= 4)
+      stretches += std::string(count > 1 ? "; " : "") + "rows " + std::to_string(i) + "-" + std::to_string(end) + " (" +
+                   format_fixed(arc, 0) + " mm)";
+    i = end + 1;
+  }
+  if (count > 4) stretches += "; " + std::to_string(count - 4) + " more";
+  c.warnings.push_back(
+      std::to_string(c.misfit_rows) + " rows lie where the scanned surface departs from the fitted model (" +
+      stretches + "): up to " + format_fixed(c.max_surface_offset_mm, 2) + " mm off along the tool axis (limit " +
+      format_fixed(o.max_surface_offset_mm, 2) + "), " + format_fixed(c.max_local_offset_mm, 2) +
+      " mm against the neighbouring rows (limit " + format_fixed(o.max_local_offset_mm, 2) + "), tool normals up to " +
+      format_fixed(c.max_normal_error_deg, 1) + " deg off along the path (limit " +
+      format_fixed(o.max_normal_error_deg, 2) +
+      "): a local shape change shorter than a segment (a dent, a bulge) that the path does not follow; inspect the "
+      "part there and program that stretch from its own measurement");
+}
+
 // The warnings of blind, bare and outlier segments and far rows, each saying what to change.
 void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c) {
   if (!c.blind_segments.empty())
@@ -247,11 +302,11 @@ void add_warnings(const SicpCheckOptions& o, std::size_t segments, SicpCheck& c)
     c.warnings.push_back(std::to_string(c.bare_segments.size()) + " segments have no scan data at all (segments " +
                          list(c.bare_segments) + ")");
   if (!c.outlier_segments.empty())
-    c.warnings.push_back(std::to_string(c.outlier_segments.size()) +
-                         " segments fit the scan far worse than the others " + "(RMS above " +
-                         format_fixed(o.outlier_ratio, 1) + " x the noise " + format_fixed(c.noise_mm, 4) +
-                         " mm; segments " + list(c.outlier_segments) +
-                         "): check the scan there (spurious points, fixtures) or the nominal surface");
+    c.warnings.push_back(
+        std::to_string(c.outlier_segments.size()) + " segments fit the scan far worse than the others " +
+        "(RMS above " + format_fixed(o.outlier_ratio, 1) + " x the noise " +
+        format_fixed(std::max(c.noise_mm, o.min_noise_mm), 4) + " mm; segments " + list(c.outlier_segments) +
+        "): check the scan there (spurious points, fixtures) or the nominal surface");
   if (!c.off_surface_segments.empty())
     c.warnings.push_back(std::to_string(c.off_surface_segments.size()) + " segments have more than " +
                          format_fixed(100.0 * o.max_off_surface, 0) +
@@ -272,6 +327,8 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
   const char* why = nullptr;
   if (!std::isfinite(outlier_ratio) || outlier_ratio <= 1.0)
     why = "outlier ratio must be > 1";
+  else if (!std::isfinite(min_noise_mm) || min_noise_mm < 0.0)
+    why = "the least noise a segment's RMS is judged against must be >= 0 mm";
   else if (!std::isfinite(max_offset_mm) || max_offset_mm <= 0.0)
     why = "largest trajectory offset from the contour must be > 0 mm";
   else if (!std::isfinite(min_confidence) || min_confidence < 0.0 || min_confidence > 1.0)
@@ -290,6 +347,14 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
     why = "largest share of a segment's points off the surface must be in (0, 1]";
   else if (!std::isfinite(max_row_step_mm) || max_row_step_mm <= 0.0)
     why = "largest step of the correction between rows must be > 0 mm";
+  else if (!std::isfinite(max_surface_offset_mm) || max_surface_offset_mm <= 0.0)
+    why = "largest offset of the scanned surface from the model must be > 0 mm";
+  else if (!std::isfinite(max_normal_error_deg) || max_normal_error_deg <= 0.0)
+    why = "largest tool normal error must be > 0 deg";
+  else if (!std::isfinite(max_local_offset_mm) || max_local_offset_mm <= 0.0)
+    why = "largest local offset of the scanned surface must be > 0 mm";
+  else if (!std::isfinite(misfit_significance) || misfit_significance <= 0.0)
+    why = "misfit significance must be > 0 standard errors";
   if (why == nullptr) return true;
   if (error != nullptr) *error = why;
   return false;
@@ -315,7 +380,7 @@ std::vector<std::size_t> count_edge_points(const KdTree& scan, const Trajectory&
 
 SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Trajectory& nominal,
                           const Trajectory& compensated, const SicpCheckOptions& o, double scan_noise_mm,
-                          const std::vector<std::size_t>& row_edge_points) {
+                          const std::vector<std::size_t>& row_edge_points, const std::vector<SicpRowMisfit>& misfit) {
   std::string why;
   if (!o.IsValid(&why)) throw Error("S-ICP checks: " + why);
   if (nominal.points.size() != compensated.points.size() || compensated.normals.size() != compensated.points.size())
@@ -352,6 +417,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c) : std::vector<double>(c.rows.size(), 1.0);
   judge_edge_offset(r.scan_edge, compensated, closed, o, c);
   const std::vector<bool> jumps = judge_row_steps(nominal, compensated, closed, o, c);
+  judge_misfit(misfit, compensated, o, c);
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
@@ -361,7 +427,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       row.confidence *= (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
-    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i]) row.confidence = 0.0;
+    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i] || row.misfit) row.confidence = 0.0;
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
     c.min_confidence = std::min(c.min_confidence, row.confidence);
   }
@@ -375,6 +441,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
                (c.far_rows > 0                       ? "rows far from the contour"
                 : c.off_edge_rows > 0                ? "rows away from the scan's edge"
                 : c.jump_rows > 0                    ? "rows that jump"
+                : c.misfit_rows > 0                  ? "rows where the scanned surface departs from the model"
                 : c.unmeasured_rows > c.bridged_rows ? "rows without scan of the edge that cannot be bridged"
                                                      : "segments fitting badly or without data") +
                "; see the warnings)";

@@ -33,9 +33,6 @@ std::string invalid_reason(const InspectOptions& o) {
     return "--reference " + o.reference_path + ": inspect needs the CAD's faces, a .step .stp .iges or .igs file";
   }
   if (o.best_fit && !o.transform_path.empty()) return "--transform and --align best-fit exclude each other";
-  // align's unit options are being split into the scan's and the reference's; until then a scan in other units is
-  // aligned with `conform align` and passed with --transform.
-  if (o.best_fit && o.mm_per_unit != 1.0) return "--align best-fit needs a scan in mm (align it with conform align)";
   if (!(std::isfinite(o.mm_per_unit) && o.mm_per_unit > 0.0)) return "millimetres per unit must be finite and > 0";
   if (!(std::isfinite(o.max_distance_mm) && o.max_distance_mm >= 0.0)) {
     return "--max-distance must be >= 0 mm (0: automatic)";
@@ -75,6 +72,7 @@ bool best_fit(const InspectOptions& options, InspectResult& result) {
   AlignOptions align;
   align.scan_path = options.scan_path;
   align.reference_path = options.reference_path;
+  align.scan_mm_per_unit = options.mm_per_unit;
   align.cad = options.cad;
   align.cad.save_mesh_path.clear();
   const AlignResult aligned = run_align(align);

@@ -1,6 +1,8 @@
 #include <cmath>
 #include <memory>
 
+#include "conform/compensation/sicp_blend.h"
+#include "conform/compensation/sicp_surface_misfit.h"
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/pipelines/sicp.h"
@@ -29,6 +31,56 @@ void projection_residuals(const ProjectionModel& model, const IcpReference& nomi
     registration.segments[k].rms_mm = r.rms_mm;
     registration.segments[k].off_surface_share = r.off_surface_share;
   }
+}
+
+// The model's residual of a scan point at a trajectory row (sicp_surface_misfit): against the nominal surface mapped by
+// the row's blended segment transforms (S-ICP: the residuals against both neighbours in an overlap, weighted as the
+// path is), by the one rigid transform, or by the projection model's height field.
+SicpModelResidual model_residual(const SicpCompensationResult& r, const Polyline& contour, const Trajectory& nominal,
+                                 const IcpReference& reference, double max_distance_mm) {
+  const SicpResult& g = r.registration;
+  const auto against = [&reference, max_distance_mm](const Eigen::Isometry3d& T_scan_nominal,
+                                                     const Eigen::Isometry3d& T_nominal_scan, const Eigen::Vector3d& q,
+                                                     double& d, Eigen::Vector3d& n) {
+    const Eigen::Vector3d x = T_nominal_scan * q;
+    const ReferencePoint c = closest_on_reference(reference, x, max_distance_mm);
+    if (!c.found) return false;
+    d = c.normal.dot(x - c.point);
+    n = T_scan_nominal.linear() * c.normal;
+    return true;
+  };
+  if (r.model == SicpModel::kProjection) {
+    const Eigen::Isometry3d T_nominal_scan = r.projection.T_scan_nominal.inverse();
+    return [&r, &reference, max_distance_mm, T_nominal_scan](const Eigen::Vector3d& q, std::size_t, double& d,
+                                                             Eigen::Vector3d& n) {
+      const ReferencePoint c = closest_on_reference(reference, T_nominal_scan * q, max_distance_mm);
+      if (!c.found) return false;
+      n = r.projection.map_normal(c.point, c.normal);
+      d = (q - r.projection.map_point(c.point)).dot(n);
+      return true;
+    };
+  }
+  if (r.model == SicpModel::kRigid || g.segments.empty()) {
+    const Eigen::Isometry3d T = g.T_scan_nominal_rigid, T_inverse = T.inverse();
+    return [against, T, T_inverse](const Eigen::Vector3d& q, std::size_t, double& d, Eigen::Vector3d& n) {
+      return against(T, T_inverse, q, d, n);
+    };
+  }
+  std::vector<Eigen::Isometry3d> T, T_inverse;
+  for (const SicpSegmentFit& f : g.segments)
+    T.push_back(f.T_scan_nominal), T_inverse.push_back(f.T_scan_nominal.inverse());
+  const std::vector<double> s = locate_on_contour(contour, g.segmentation.arc_length_mm, nominal.points);
+  return [against, T, T_inverse, s, &g](const Eigen::Vector3d& q, std::size_t row, double& d, Eigen::Vector3d& n) {
+    const BlendAt b = blend_at(g.segmentation, s[row]);
+    if (!against(T[b.segment], T_inverse[b.segment], q, d, n)) return false;
+    if (b.next == b.segment || b.weight <= 0.0) return true;
+    double d_next = 0.0;
+    Eigen::Vector3d n_next;
+    if (!against(T[b.next], T_inverse[b.next], q, d_next, n_next)) return true;
+    d = (1.0 - b.weight) * d + b.weight * d_next;
+    n = ((1.0 - b.weight) * n + b.weight * n_next).normalized();
+    return true;
+  };
 }
 
 }  // namespace
@@ -90,10 +142,15 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
   const KdTree tree(thin);
   if (options.normals.from_scan)
     r.normals_from_scan = reestimate_tool_normals(r.trajectory, thin, tree, options.normals);
+  const std::vector<Eigen::Vector3d> predicted_normals = r.trajectory.normals;
   smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
+  const double noise = estimate_surface_noise(thin, tree, kScanNoise);
+  const std::vector<SicpRowMisfit> misfit = sicp_surface_misfit(
+      r.trajectory, predicted_normals, thin, tree, noise,
+      model_residual(r, contour, nominal, *reference, options.sicp.max_distance_mm), options.misfit);
   r.check = check_sicp_path(
-      contour, r.registration, nominal, r.trajectory, options.checks, estimate_surface_noise(thin, tree, kScanNoise),
-      count_edge_points(tree, r.trajectory, options.checks.edge_radius_mm, 2 * options.checks.min_edge_points));
+      contour, r.registration, nominal, r.trajectory, options.checks, noise,
+      count_edge_points(tree, r.trajectory, options.checks.edge_radius_mm, 2 * options.checks.min_edge_points), misfit);
   r.trusted = r.check.trusted;
   return r;
 }

@@ -14,6 +14,7 @@
 
 #include "conform/compensation/projection_model.h"
 #include "conform/compensation/sicp_checks.h"
+#include "conform/compensation/sicp_surface_misfit.h"
 #include "conform/compensation/trajectory.h"
 #include "conform/compensation/trajectory_error.h"
 #include "conform/core/cad.h"
@@ -34,6 +35,7 @@ struct SicpCompensationOptions {
   ProjectionOptions projection;
   ToolNormalOptions normals;
   SicpCheckOptions checks;
+  SicpMisfitOptions misfit;  // the fit of the scan's residuals at each row that checks.max_surface_offset_mm judges
 };
 
 struct SicpCompensationResult {

@@ -85,7 +85,8 @@ struct SicpResult {
 };
 
 // A segment's residuals judged robustly: a residual is off the surface when it lies more than 4 robust sigmas
-// (1.4826 x the median absolute deviation from the median) from the median; the RMS is that of the others. Stray
+// (1.4826 x the median absolute deviation from the median), and more than 0.2 mm, from the median; the RMS is that of
+// the others. Stray
 // points (spikes, dust: a share of a percent) then leave the RMS at the noise; a dent or a fixture that the segment
 // cannot follow shows as a larger share off the surface (compensation/sicp_checks.h judges it).
 struct SicpResiduals {

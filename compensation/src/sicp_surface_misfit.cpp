@@ -1,0 +1,195 @@
+#include "conform/compensation/sicp_surface_misfit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "conform/core/error.h"
+#include "conform/core/nearest_neighbors.h"
+
+namespace conform {
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// A closed path: its ends within three median row spacings (as the checks and the normal smoothing read it).
+bool is_closed(const std::vector<Eigen::Vector3d>& points) {
+  if (points.size() < 3) return false;
+  std::vector<double> spacing;
+  for (std::size_t i = 1; i < points.size(); ++i) spacing.push_back((points[i] - points[i - 1]).norm());
+  return (points.back() - points.front()).norm() <= 3.0 * median(spacing);
+}
+
+// The path's direction at each row, from the rows before and after.
+std::vector<Eigen::Vector3d> path_tangents(const std::vector<Eigen::Vector3d>& points, bool closed) {
+  const std::size_t n = points.size();
+  std::vector<Eigen::Vector3d> tangents(n, Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; n >= 2 && i < n; ++i) {
+    const std::size_t next = i + 1 < n ? i + 1 : (closed ? 0 : n - 1);
+    const std::size_t previous = i > 0 ? i - 1 : (closed ? n - 1 : 0);
+    tangents[i] = points[next] - points[previous];
+  }
+  return tangents;
+}
+
+struct PointResidual {
+  double residual_mm = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  bool found = false;
+};
+
+// Each scan point near the path, its residual against the model at the nearest row (once per point, not per row:
+// the rows' discs overlap).
+std::vector<PointResidual> residuals_near_path(const Trajectory& t, const std::vector<Eigen::Vector3d>& scan,
+                                               const SicpModelResidual& residual, double radius_mm) {
+  const KdTree rows(t.points);
+  std::vector<PointResidual> out(scan.size());
+  const auto r2 = static_cast<float>(radius_mm * radius_mm);
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    float sq = 0.0f;
+    const int row = rows.nearest(scan[k].cast<float>(), &sq);
+    if (row < 0 || sq > r2) continue;
+    PointResidual& p = out[k];
+    p.found = residual(scan[k], static_cast<std::size_t>(row), p.residual_mm, p.normal);
+  }
+  return out;
+}
+
+// Each row's local mean residual against its neighbours': the mean of the rows neighbour_from_mm to neighbour_to_mm
+// along the path before it and after it (those with a mean), the two sides averaged (one alone at an open end). The
+// neighbours' discs overlap: they count as independent every 2 near_radius_mm.
+void compare_with_neighbours(const std::vector<Eigen::Vector3d>& points, bool closed, const SicpMisfitOptions& o,
+                             const std::vector<double>& mean, std::vector<SicpRowMisfit>& m) {
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (m[i].near_points == 0) continue;
+    double sides = 0.0, baseline = 0.0;
+    for (int direction : {-1, 1}) {
+      double d = 0.0, sum = 0.0;
+      std::size_t count = 0, j = i;
+      for (std::size_t steps = 1; steps < n; ++steps) {
+        if (!closed && ((direction < 0 && j == 0) || (direction > 0 && j + 1 == n))) break;
+        const std::size_t next = direction > 0 ? (j + 1) % n : (j + n - 1) % n;
+        d += (points[next] - points[j]).norm();
+        j = next;
+        if (d > o.neighbour_to_mm || j == i) break;
+        if (d >= o.neighbour_from_mm && m[j].near_points > 0) sum += mean[j], ++count;
+      }
+      if (count > 0) baseline += sum / static_cast<double>(count), sides += 1.0;
+    }
+    if (sides == 0.0) continue;
+    const double independent =
+        std::max(1.0, sides * (o.neighbour_to_mm - o.neighbour_from_mm) / (2.0 * o.near_radius_mm));
+    m[i].local_offset_mm = mean[i] - baseline / sides;
+    m[i].local_offset_se_mm *= std::sqrt(1.0 + 1.0 / independent);
+  }
+}
+
+}  // namespace
+
+bool SicpMisfitOptions::IsValid(std::string* error) const {
+  const char* why = nullptr;
+  if (!std::isfinite(radius_mm) || radius_mm <= 0.0)
+    why = "surface misfit radius must be > 0 mm";
+  else if (min_points < 3)
+    why = "surface misfit needs at least 3 points";
+  else if (!std::isfinite(face_angle_deg) || face_angle_deg <= 0.0 || face_angle_deg >= 90.0)
+    why = "face angle must be in (0, 90) deg";
+  else if (!std::isfinite(near_radius_mm) || near_radius_mm <= 0.0 || near_radius_mm > radius_mm)
+    why = "the local mean's radius must be in (0, surface misfit radius] mm";
+  else if (!std::isfinite(neighbour_from_mm) || !std::isfinite(neighbour_to_mm) || neighbour_from_mm < 0.0 ||
+           neighbour_to_mm <= neighbour_from_mm)
+    why = "the neighbours' reach must satisfy 0 <= from < to mm";
+  if (why == nullptr) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::vector<Eigen::Vector3d>& predicted,
+                                               const std::vector<Eigen::Vector3d>& scan, const KdTree& scan_tree,
+                                               double noise_mm, const SicpModelResidual& residual,
+                                               const SicpMisfitOptions& o) {
+  std::string why;
+  if (!o.IsValid(&why)) throw Error("S-ICP surface misfit: " + why);
+  if (t.normals.size() != t.points.size() || predicted.size() != t.points.size())
+    throw Error("S-ICP surface misfit: one tool normal per row needed");
+  if (scan_tree.size() != scan.size()) throw Error("S-ICP surface misfit: the scan's index differs from the scan");
+  std::vector<SicpRowMisfit> out(t.points.size());
+  if (t.points.empty() || scan.empty()) return out;
+  const std::vector<PointResidual> r = residuals_near_path(t, scan, residual, o.radius_mm);
+  const bool closed = is_closed(t.points);
+  const std::vector<Eigen::Vector3d> tangents = path_tangents(t.points, closed);
+  const double face = std::cos(o.face_angle_deg / kDeg);
+  const double noise = std::max(noise_mm, 1e-6);
+  std::vector<double> near_mean(t.points.size(), 0.0);
+  std::vector<int> indices;
+  std::vector<float> sq;
+  std::vector<Eigen::Vector3d> uvr;  // along, across, residual
+  std::vector<double> values;
+  for (std::size_t i = 0; i < t.points.size(); ++i) {
+    const Eigen::Vector3d axis = t.normals[i].normalized();
+    Eigen::Vector3d along = tangents[i] - tangents[i].dot(axis) * axis;
+    if (along.norm() < 1e-12) continue;
+    along.normalize();
+    const Eigen::Vector3d across = axis.cross(along);
+    scan_tree.radius(t.points[i].cast<float>(), static_cast<float>(o.radius_mm), indices, sq);
+    uvr.clear();
+    values.clear();
+    for (int k : indices) {
+      const PointResidual& p = r[static_cast<std::size_t>(k)];
+      if (!p.found || p.normal.dot(axis) < face) continue;
+      const Eigen::Vector3d d = scan[static_cast<std::size_t>(k)] - t.points[i];
+      uvr.emplace_back(d.dot(along), d.dot(across), p.residual_mm);
+      values.push_back(p.residual_mm);
+    }
+    if (uvr.size() < o.min_points) continue;
+    const double centre = median(values);
+    for (double& v : values) v = std::abs(v - centre);
+    const double limit = std::max(4.0 * 1.4826 * median(values), 4.0 * noise);
+    Eigen::Matrix3d XtX = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d Xtr = Eigen::Vector3d::Zero();
+    std::size_t used = 0, near = 0;
+    double near_sum = 0.0;
+    for (const Eigen::Vector3d& p : uvr) {
+      if (std::abs(p.z() - centre) > limit) continue;
+      if (p.head<2>().squaredNorm() <= o.near_radius_mm * o.near_radius_mm) near_sum += p.z(), ++near;
+      const Eigen::Vector3d x(1.0, p.x(), p.y());
+      XtX += x * x.transpose();
+      Xtr += x * p.z();
+      ++used;
+    }
+    if (used < o.min_points || XtX.determinant() <= 1e-9 * std::pow(XtX(0, 0), 3)) continue;
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(XtX);
+    const Eigen::Vector3d fit = ldlt.solve(Xtr);
+    const Eigen::Matrix3d cov = noise * noise * ldlt.solve(Eigen::Matrix3d::Identity());
+    SicpRowMisfit& m = out[i];
+    m.points = used;
+    m.offset_mm = fit(0);
+    m.offset_se_mm = std::sqrt(std::max(cov(0, 0), 0.0));
+    // The surface h = a + b u + c v along the normal: its normal tilts by -(b, c); so should the tool normal.
+    const Eigen::Vector3d expected = (predicted[i] - fit(1) * along - fit(2) * across).normalized();
+    const Eigen::Vector3d difference = axis - expected;
+    m.normal_error_deg = std::acos(std::clamp(expected.dot(axis), -1.0, 1.0)) * kDeg;
+    m.along_error_deg = std::abs(std::asin(std::clamp(difference.dot(along), -1.0, 1.0))) * kDeg;
+    m.across_error_deg = std::abs(std::asin(std::clamp(difference.dot(across), -1.0, 1.0))) * kDeg;
+    m.along_z = std::abs(fit(1)) / std::sqrt(std::max(cov(1, 1), 1e-30));
+    m.across_z = std::abs(fit(2)) / std::sqrt(std::max(cov(2, 2), 1e-30));
+    if (near >= 5) {
+      m.near_points = near;
+      near_mean[i] = near_sum / static_cast<double>(near);
+      m.local_offset_se_mm = noise / std::sqrt(static_cast<double>(near));
+    }
+  }
+  compare_with_neighbours(t.points, closed, o, near_mean, out);
+  return out;
+}
+
+}  // namespace conform

@@ -1,0 +1,96 @@
+// Dents at the edge under noise (issue 30): whether a local shape change is caught must not hinge on the noise level.
+// A dent 0.5-1.5 mm deep and 10-30 mm wide at the edge of the new panels' oval, scan noise 0.03-0.15 mm, three seeds
+// (the dent at a different place on each): no dented path may be trusted beyond the bar (off the true path mean
+// <= 0.2 mm, peak <= 0.6 mm, tool normals within 3 deg, no jump above 0.2 mm); the same panels without a dent, and
+// the cut-out's, must be trusted (a refused right answer is a failure too). Before the surface misfit check
+// (sicp_surface_misfit.h) the dents were trusted 0.4-1.4 mm off at peak with tool normals 3.5-19.7 deg off, and
+// whether one was caught depended on the noise. Release build only (CI's sanitizer stage skips *Matrix*).
+// SICP_DENT_SWEEP=1 runs every depth x width x noise x seed (108 dented paths, the docs' table) and 100 undented
+// paths instead of the covering subsets below; it shows the known limit: a dent 0.5 mm deep and 10 mm wide under
+// 0.15 mm noise is trusted on seeds 32 and 33 (0.59 / 0.43 mm at peak, tool normals 6.7-6.9 deg off), below what
+// about 30 scan points per 6 mm of edge resolve (docs/sicp.md).
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "conform/datasets/panel.h"
+#include "sicp_test_panels.h"
+
+namespace conform {
+namespace {
+
+using test::meets_bar_or_refused;
+using test::new_panel;
+using test::PanelRun;
+using test::run;
+
+constexpr double kNoise[] = {0.03, 0.06, 0.10, 0.15};
+constexpr double kDepth[] = {0.5, 1.0, 1.5};
+constexpr double kWidth[] = {10.0, 20.0, 30.0};
+constexpr std::uint64_t kSeeds[] = {31, 32, 33};
+constexpr double kDentAt[] = {0.3, 0.55, 0.8};  // per seed: where on the oval (share of a turn from +x)
+
+std::string label(double depth, double width, double noise, std::uint64_t seed) {
+  char text[96];
+  std::snprintf(text, sizeof text, "dent %.1f x %.0f mm, noise %.2f, seed %llu", depth, width, noise,
+                static_cast<unsigned long long>(seed));
+  return text;
+}
+
+// Every depth and every noise level on every seed, the width cycling so that each depth meets each width at every
+// noise level over the seeds (36 paths); SICP_DENT_SWEEP=1: every width too.
+TEST(SicpDentMatrix, DentsAreCaughtAtEveryNoiseLevel) {
+  const bool sweep = std::getenv("SICP_DENT_SWEEP") != nullptr;
+  int dents = 0, refused = 0;
+  for (int s = 0; s < 3; ++s) {
+    for (int n = 0; n < 4; ++n) {
+      for (int d = 0; d < 3; ++d) {
+        for (int w = 0; w < 3; ++w) {
+          if (!sweep && w != (s + n + d) % 3) continue;
+          PanelOptions o = new_panel(PlateOpening::kEllipse, kSeeds[s]);
+          o.noise_mm = kNoise[n];
+          o.dent_depth_mm = kDepth[d];
+          o.dent_width_mm = kWidth[w];
+          o.dent_at = kDentAt[s];
+          const PanelRun r = run(o);
+          const std::string what = label(kDepth[d], kWidth[w], kNoise[n], kSeeds[s]);
+          ++dents;
+          if (!meets_bar_or_refused(r, what)) {
+            ++refused;
+            EXPECT_NE(r.result.check.reason.find("departs from the model"), std::string::npos) << what;
+          }
+        }
+      }
+    }
+  }
+  std::printf("%d of %d dented paths refused\n", refused, dents);
+}
+
+// The same panels without a dent: trusted at every noise level and seed, oval and cut-out. SICP_DENT_SWEEP=1: seeds
+// 31-40, noise 0.02-0.15 mm, both openings.
+TEST(SicpDentMatrix, UndentedPathsStayTrusted) {
+  const bool sweep = std::getenv("SICP_DENT_SWEEP") != nullptr;
+  for (const PlateOpening opening : {PlateOpening::kEllipse, PlateOpening::kRoundedRectangle}) {
+    for (std::uint64_t seed = 31; seed <= (sweep ? 40u : 33u); ++seed) {
+      for (const double noise : {0.02, 0.03, 0.06, 0.10, 0.15}) {
+        if (!sweep && (noise == 0.02 || (opening == PlateOpening::kRoundedRectangle && noise != 0.03 && noise != 0.15)))
+          continue;
+        PanelOptions o = new_panel(opening, seed);
+        o.noise_mm = noise;
+        const PanelRun r = run(o);
+        char what[96];
+        std::snprintf(what, sizeof what, "no dent, %s, noise %.2f, seed %llu", to_string(opening), noise,
+                      static_cast<unsigned long long>(seed));
+        EXPECT_TRUE(meets_bar_or_refused(r, what)) << what << ": " << r.result.check.reason;
+        EXPECT_EQ(r.result.check.misfit_rows, 0u) << what;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace conform
