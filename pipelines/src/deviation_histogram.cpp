@@ -18,12 +18,12 @@ namespace detail {
 
 
 std::pair<double, double> deviation_axis(const std::vector<double>& sorted, const DeviationStatistics& s) {
-  // Fences one central-95 % span beyond the 2.5th and 97.5th percentiles: for normal noise they lie past the
-  // 0.5th-99.5th percentiles (+-5.9 sigma against +-2.6), so only a thin, far tail (outliers) is cut off the axis.
+  // Fences half the central-95 % span beyond the 2.5th and 97.5th percentiles: for normal noise they lie past the
+  // 0.5th-99.5th percentiles (+-3.9 sigma against +-2.6), so only a thin, far tail (outliers) is cut off the axis.
   const double p2_5 = percentile_of_sorted(sorted, 2.5), p97_5 = percentile_of_sorted(sorted, 97.5);
-  const double core = p97_5 - p2_5;
-  double lo = std::min(std::max(percentile_of_sorted(sorted, 0.5), p2_5 - core), 0.0);
-  double hi = std::max(std::min(percentile_of_sorted(sorted, 99.5), p97_5 + core), 0.0);
+  const double margin = 0.5 * (p97_5 - p2_5);
+  double lo = std::min(std::max(percentile_of_sorted(sorted, 0.5), p2_5 - margin), 0.0);
+  double hi = std::max(std::min(percentile_of_sorted(sorted, 99.5), p97_5 + margin), 0.0);
   if (s.tolerance_mm) {
     lo = std::min(lo, -1.3 * *s.tolerance_mm);
     hi = std::max(hi, 1.3 * *s.tolerance_mm);
