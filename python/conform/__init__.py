@@ -21,7 +21,7 @@ import numpy as _np
 from . import _conform
 from ._conform import Error, Geometry, read
 
-__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "generate_tube_joint", "JOBS"]
+__all__ = ["Error", "Geometry", "Result", "read", "align", "compare", "inspect", "pose_error", "fit_cylinder", "saddle", "generate_tube", "weld_layers", "profile", "tube_joint", "sicp", "export", "generate_eroded", "generate_profile", "generate_plate", "generate_nosecone", "generate_tube_joint", "JOBS"]
 
 
 class Result:
@@ -83,6 +83,19 @@ def compare(scan, reference, **options):
     Arrays: deviation_mm (N,), closest_mm (N, 3), NaN where unmatched.
     """
     return _result("compare", _conform.compare(scan, reference, **options))
+
+
+def inspect(scan, reference, **options):
+    """`conform inspect`: the scan inspected by the CAD's faces: per face (the JSON's `faces`) the signed deviation,
+    the form and the fitted feature against its nominal (docs/inspect.md).
+
+    scan: path, (N, 3) array, (vertices, faces) pair or conform.Geometry; reference: the CAD's path (.step .stp .iges
+    .igs). Options as the CLI's flags: transform (path or (4, 4) T_ref_scan), align ("best-fit"), datums (face ids,
+    primary first), max_distance, max_normal_angle_deg, form_trim, min_fit_points, tolerances (path), out_faces,
+    units, cad_deflection, cad_angle_deg, cad_save_mesh, progress. Arrays: point_face (N,), each point's face id, 0
+    for none.
+    """
+    return _result("inspect", _conform.inspect(scan, reference, **options))
 
 
 def pose_error(transform_a, transform_b, **options):
@@ -206,4 +219,4 @@ def generate_tube_joint(out_leg, out_stub, out_truth, **options):
 
 
 # The jobs conform.batch can run, by the manifest's `job` column.
-JOBS = {"align": align, "compare": compare, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp, "export": export}
+JOBS = {"align": align, "compare": compare, "inspect": inspect, "pose_error": pose_error, "fit_cylinder": fit_cylinder, "saddle": saddle, "weld_layers": weld_layers, "profile": profile, "tube_joint": tube_joint, "sicp": sicp, "export": export}

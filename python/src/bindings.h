@@ -90,6 +90,9 @@ inline void check_keywords(const char* job, const py::kwargs& kw, std::initializ
 // The generators of the sicp test data (generator_jobs.cpp): generate_plate, generate_nosecone.
 void bind_generator_jobs(py::module_& m);
 
+// conform.inspect (inspect_job.cpp): inspection by the CAD's faces.
+void bind_inspect_job(py::module_& m);
+
 // The path-planning jobs (toolpath_jobs.cpp): profile, tube_joint, weld_layers, generate_tube.
 void bind_toolpath_jobs(py::module_& m);
 

@@ -482,4 +482,5 @@ PYBIND11_MODULE(_conform, m) {
         arg("report") = py::none());
   bind_toolpath_jobs(m);
   bind_generator_jobs(m);
+  bind_inspect_job(m);
 }

@@ -1,0 +1,57 @@
+"""conform.inspect (issue 33): the same figures as `conform inspect --json`, on a generated half-turn scan of the bundled
+IGES cylinder (R 15 x 40 mm) made 0.03 mm oversize, given as a file and as an array; tolerances judged; bad options
+raise conform.Error naming the keyword argument."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+import conform
+from conftest import cli, cli_json
+from test_jobs import assert_same
+
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "datasets" / "examples"
+CYLINDER = EXAMPLES / "cylinder.igs"
+LIMITS = EXAMPLES / "cylinder.limits.csv"
+
+
+@pytest.fixture(scope="module")
+def scan(tmp_path_factory):
+    """The cylinder's side, R 15.03 (0.03 mm oversize), noise 0.005 mm, as the generator writes it."""
+    d = tmp_path_factory.mktemp("inspect")
+    path = d / "scan.ply"
+    cli("generate", "tube", "--out", path, "--radius", 15.03, "--length", 40, "--axis-point", "0,0,20", "--arc-deg",
+        180, "--edge", 0.5, "--noise", 0.005, "--quiet")
+    return path
+
+
+def test_inspect_gives_the_clis_figures(tmp_path, scan):
+    expected = cli_json("inspect", "--scan", scan, "--reference", CYLINDER, "--tolerances", LIMITS)
+    r = conform.inspect(scan, CYLINDER, tolerances=LIMITS)
+    assert_same(r.to_dict(), expected)
+    side = r.faces[0]
+    assert side["type"] == "cylinder" and side["deviation_to"] == "exact surface"
+    assert side["radius_mm"] == pytest.approx(15.03, abs=0.002)  # the oversize, measured
+    assert side["mean_mm"] == pytest.approx(0.03, abs=0.002)     # a shaft: material outside the CAD is +
+    assert r.verdict == "pass"                                   # +-0.05, form 0.05
+    assert r.point_face.shape == (r.points,) and set(np.unique(r.point_face)) <= {0, 1}
+    assert (r.point_face == 1).sum() == side["points"]
+
+
+def test_inspect_takes_an_array_and_judges_tolerances(tmp_path, scan):
+    points = conform.read(scan).points
+    limits = tmp_path / "tight.csv"
+    limits.write_text("face,lower_mm,upper_mm,form_mm\n1,-0.02,0.02,\n")
+    r = conform.inspect(points, CYLINDER, tolerances=limits)
+    assert r.scan is None  # given in memory
+    assert r.verdict == "fail" and r.faces[0]["tolerance"]["profile_pass"] is False
+
+
+def test_bad_options_name_the_keyword_argument(scan):
+    with pytest.raises(conform.Error, match="max_distance"):
+        conform.inspect(scan, CYLINDER, max_distance=-1.0)
+    with pytest.raises(conform.Error, match="align"):
+        conform.inspect(scan, CYLINDER, align="sideways")
+    with pytest.raises(conform.Error, match="datums"):
+        conform.inspect(scan, CYLINDER, datums=[7])
