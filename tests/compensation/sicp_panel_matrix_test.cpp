@@ -1,9 +1,9 @@
 // `conform sicp` on the new panels (a smaller porthole in a curved plate, a field of up to 7.5 mm, a misplacement of
 // about 1 deg and 3 mm): scans of the face only (no flank), stray points, CAD contours with uneven spacing, every
-// model (dents at the edge: sicp_dent_matrix_test.cpp). Reduced parts, a few seeds each (release build only: CI's sanitizer
-// stage skips *Matrix*). Every run must either meet the bar (off the true path mean <= 0.2 mm, peak <= 0.6 mm, tool
-// normals within 3 deg, no jump above 0.2 mm between rows' corrections) or be refused with a reason; where the scan
-// sees the part, it must be trusted.
+// model (dents at the edge: sicp_dent_matrix_test.cpp). Reduced parts, a few seeds each (release build only: CI's
+// sanitizer stage skips *Matrix*). Every run must either meet the bar (off the true path mean <= 0.2 mm, peak <= 0.6
+// mm, tool normals within 3 deg, no jump above 0.2 mm between rows' corrections) or be refused with a reason; where
+// the scan sees the part, it must be trusted.
 
 #include <algorithm>
 #include <cstdio>
