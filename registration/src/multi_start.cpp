@@ -267,10 +267,12 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     std::vector<char> mask;
     DegeneracyReport constraint;
   };
-  const auto probe_start = [&](const CoarseStart& start) {
+  // A probe from `from` (the start itself, or where an earlier probe of it ended) for at most `iterations`.
+  const auto run_probe = [&](const CoarseStart& start, const Eigen::Isometry3d& from, int iterations) {
     IcpOptions probe = options.probe;
     probe.progress = nullptr;
-    const IcpResult r = icp(subset, reference, start.T_ref_scan, probe);
+    probe.max_iterations = iterations;
+    const IcpResult r = icp(subset, reference, from, probe);
     Probe out;
     out.report.label = start.label;
     out.report.T_start = start.T_ref_scan;
@@ -284,6 +286,14 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       out.report.inlier_share = share_of(out.mask);
     }
     return out;
+  };
+  const auto probe_start = [&](const CoarseStart& start) {
+    return run_probe(start, start.T_ref_scan, options.probe.max_iterations);
+  };
+  // Start i's probe run on to convergence from where it ended (MultiStartOptions::settle_iterations).
+  const auto settled = [&](std::size_t i) {
+    const StartReport& s = result.starts[i];
+    return run_probe({s.label, s.T_start}, s.T_probe, options.settle_iterations);
   };
   // The probes are independent and each too small to share out (icp() runs a few thousand points on one thread):
   // one start a thread, merged in the order given, so the result is the same for any number of threads.
@@ -335,46 +345,51 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     result.free_motions =
         symmetric_motions(subset, reference, best.T_probe, constraints[b], masks[b], step_mm, reach, options);
   }
-  // Where a probe's pose settles, run on to convergence: the best's once, on demand.
-  IcpOptions settle = options.probe;
-  settle.progress = nullptr;
-  settle.max_iterations = options.settle_iterations;
-  const auto settled = [&](const Eigen::Isometry3d& T) { return icp(subset, reference, T, settle).T_ref_scan; };
-  std::optional<Eigen::Isometry3d> best_settled;
   const auto apart = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
     return rotation_angle(b * a.inverse()) > far_rad || (b * centre - a * centre).norm() > far_mm;
   };
-  for (std::size_t j = 0; j < result.starts.size(); ++j) {
+  // Whether start j (as `o`, its probe's figures and inlier mask `m`) competes with the best (`b`, mask `bm`): close
+  // in score, elsewhere, not along a free motion, not told apart. The flags are set on start j.
+  const auto competes = [&](std::size_t j, const StartReport& b, const std::vector<char>& bm, const StartReport& o,
+                            const std::vector<char>& m) {
     StartReport& other = result.starts[j];
-    if (static_cast<int>(j) == result.best) continue;
-    const bool close = by_share ? other.inlier_share >= (1.0 - options.share_margin) * best.inlier_share
-                                : other.score_mm <= (1.0 + options.ambiguity) * best.score_mm;
-    if (!close) continue;
-    if (!apart(best.T_probe, other.T_probe)) continue;
+    const bool close = by_share ? o.inlier_share >= (1.0 - options.share_margin) * b.inlier_share
+                                : o.score_mm <= (1.0 + options.ambiguity) * b.score_mm;
+    if (!close || !apart(b.T_probe, o.T_probe)) return false;
     if (!result.free_motions.empty() &&
-        same_up_to_free(best.T_probe, other.T_probe, result.free_motions, centre, far_rad, far_mm)) {
+        same_up_to_free(b.T_probe, o.T_probe, result.free_motions, centre, far_rad, far_mm)) {
       other.same_up_to_free = true;
-      continue;
+      return false;
     }
     if (by_share) {
-      const std::vector<char>& b = masks[static_cast<std::size_t>(result.best)];
       std::size_t best_only = 0, other_only = 0;
       for (std::size_t i = 0; i < subset.size(); ++i) {
-        best_only += b[i] && !masks[j][i];
-        other_only += masks[j][i] && !b[i];
+        best_only += bm[i] && !m[i];
+        other_only += m[i] && !bm[i];
       }
       other.best_only_share = static_cast<double>(best_only) / static_cast<double>(subset.size());
       other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
       other.separated = separated(best_only, other_only, subset.size(), options);
-      if (other.separated) continue;
+      if (other.separated) return false;
     }
+    return true;
+  };
+  const auto b = static_cast<std::size_t>(result.best);
+  std::optional<Probe> best_settled;  // the best's probe run on, once, when a start competes with it as probed
+  for (std::size_t j = 0; j < result.starts.size(); ++j) {
+    if (j == b || !competes(j, best, masks[b], result.starts[j], masks[j])) continue;
     if (options.settle_iterations > 0) {
-      if (!best_settled) best_settled = settled(best.T_probe);
-      if (!apart(*best_settled, settled(other.T_probe))) {
-        other.same_when_settled = true;
+      // Both run on to convergence: the same minimum, or elsewhere and judged again there (the reported figures
+      // stay the probes'; the coarse pose is the best's probe, finished by the coarse stage).
+      if (!best_settled) best_settled = settled(b);
+      const Probe other = settled(j);
+      if (!apart(best_settled->report.T_probe, other.report.T_probe)) {
+        result.starts[j].same_when_settled = true;
         continue;
       }
+      if (!competes(j, best_settled->report, best_settled->mask, other.report, other.mask)) continue;
     }
+    const StartReport& other = result.starts[j];
     if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
       result.ambiguous = true;
       result.runner_up = static_cast<int>(j);
