@@ -15,7 +15,7 @@ namespace {
 constexpr std::size_t kBins = 60;
 constexpr std::size_t kWorst = 5;  // callouts
 
-// The points of largest |deviation|, at most kWorst, each at least 5 % of the points' extent from those before it
+// The points of largest |deviation|, at most kWorst, each at least 10 % of the points' extent from those before it
 // (so that one bump does not take every callout), largest first.
 std::vector<std::size_t> worst_points(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& d) {
   std::vector<std::size_t> order;
@@ -27,7 +27,7 @@ std::vector<std::size_t> worst_points(const std::vector<Eigen::Vector3d>& points
   }
   std::stable_sort(order.begin(), order.end(),
                    [&d](std::size_t a, std::size_t b) { return std::abs(d[a]) > std::abs(d[b]); });
-  const double apart = order.empty() ? 0.0 : 0.05 * (hi - lo).norm();
+  const double apart = order.empty() ? 0.0 : 0.1 * (hi - lo).norm();
   std::vector<std::size_t> out;
   for (std::size_t i : order) {
     if (out.size() == kWorst) break;

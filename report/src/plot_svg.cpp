@@ -99,8 +99,10 @@ void bands(std::string& out, const Frame& f, const Plot& plot) {
     const double a = std::clamp(f.px(plot.x_band->lo), kLeft, right), b = std::clamp(f.px(plot.x_band->hi), kLeft, right);
     out += "<rect class=\"band" + kind + "\" x=\"" + num(a) + "\" y=\"" + num(kTop) + "\" width=\"" + num(b - a) + "\" height=\"" +
            num(bottom - kTop) + "\"><title>" + escape_html(plot.x_band->label) + "</title></rect>";
-    out += "<text class=\"band-label" + kind + "\" x=\"" + num(b + 3) + "\" y=\"" + num(kTop + 12) + "\">" +
-           escape_html(plot.x_band->label) + "</text>";
+    // Right of the band, or inside its right edge when the label (about 6 px a character) would leave the frame.
+    const bool fits = b + 3 + 6.0 * static_cast<double>(plot.x_band->label.size()) <= right;
+    out += "<text class=\"band-label" + kind + "\" x=\"" + num(fits ? b + 3 : b - 3) + "\" y=\"" + num(kTop + 12) +
+           "\"" + (fits ? "" : " text-anchor=\"end\"") + ">" + escape_html(plot.x_band->label) + "</text>";
   }
   if (plot.y_band) {
     const std::string kind = plot.y_band->reject ? " reject" : "";

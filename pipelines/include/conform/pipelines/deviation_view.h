@@ -1,7 +1,7 @@
 #pragma once
 // The deviation part of a report (compare, align): the scan's points coloured by signed deviation with the colour
 // scale of the deviation map (deviation_colours.h) and its colour bar with the tolerance band, the reference mesh
-// semi-transparent, callouts at the (up to 5, spread out) largest |deviations|, and a "Deviation" section with the
+// semi-transparent, callouts at the (up to 5, 10 % of the extent apart) largest |deviations|, and a "Deviation" section with the
 // statistics table, the callouts' table and the histogram (as the PNG's: 60 bins over the 0.5th to 99.5th
 // percentile without far outliers, 0 and the band; the rest in the end bars, labelled). A click on a scan point
 // shows its coordinates and deviation.
