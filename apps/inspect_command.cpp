@@ -12,6 +12,8 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/inspect.h"
 #include "conform/pipelines/inspect_json.h"
+#include "conform/pipelines/inspect_report.h"
+#include "report_option.h"
 #include "terminal.h"
 
 namespace conform::app {
@@ -54,6 +56,7 @@ class InspectCommand : public Command {
                  "toleranced): pass/fail per face and a verdict; the exit code stays 0 when the job ran");
     c.add_option("--out-faces", options_.out_faces_path, "Write one row per face as .csv");
     c.add_option("--units", units_, "Units of the scan and the transform (mm, cm, m, in); the CAD says its own");
+    add_report_option(c, report_path_);
     add_cad_options(c, options_.cad);
     c.add_flag("--json", json_, "Print one JSON object on stdout instead of text");
   }
@@ -61,7 +64,7 @@ class InspectCommand : public Command {
   void declare_files(OutputSet& files) override {
     files.add_inputs(
         {options_.scan_path, options_.reference_path, options_.transform_path, options_.tolerances_path});
-    files.add_outputs({options_.out_faces_path, options_.cad.save_mesh_path});
+    files.add_outputs({options_.out_faces_path, options_.cad.save_mesh_path, report_path_});
   }
 
   int run() override {
@@ -70,13 +73,17 @@ class InspectCommand : public Command {
     options_.max_normal_angle_rad = normal_angle_deg_ * kRadPerDeg;
     options_.progress = stderr_progress(false);
     options_.cad.progress = options_.progress;
+    options_.keep_geometry = !report_path_.empty();
     const InspectResult result = run_inspect(options_);
     warn_all(result.warnings);
+    const nlohmann::json json = inspect_json(options_, result, units_);
+    if (!report_path_.empty()) write_report(report_path_, inspect_report(options_, result, json, report_date()));
     if (json_) {
-      print_json(inspect_json(options_, result, units_));
+      print_json(json);
     } else {
       print_cad_text(result.cad_inputs);
       print_text(result);
+      if (!report_path_.empty()) std::printf("wrote        %s\n", report_path_.c_str());
     }
     if (!result.ok) {
       warn(result.termination);
@@ -136,6 +143,7 @@ class InspectCommand : public Command {
   std::string align_;
   double normal_angle_deg_ = 30.0;
   std::string units_ = "mm";
+  std::string report_path_;
   bool json_ = false;
 };
 

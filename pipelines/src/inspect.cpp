@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "cad_inputs.h"
@@ -186,6 +187,7 @@ void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector
     if (result.point_face[i] != 0) members[result.point_face[i] - 1].push_back(i);
   }
   result.faces.resize(cad.faces.size());
+  result.deviation_mm.assign(points.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {
     FaceInspection& face = result.faces[f];
     face.id = f + 1;
@@ -196,6 +198,7 @@ void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector
       p.push_back(points[i]);
       n.push_back(normals[i]);
       d.push_back(is_analytic(face.nominal.type) ? analytic_signed_distance(face.nominal, points[i]) : to_mesh[i]);
+      result.deviation_mm[i] = d.back();
     }
     detail::measure_face(p, n, d, options, face);
     report(options.progress, "faces", static_cast<double>(f + 1) / static_cast<double>(cad.faces.size()));
@@ -219,7 +222,7 @@ InspectResult run_inspect(const InspectOptions& options) {
   result.scan_points = scan.vertices.size();
   report(options.progress, "read CAD", 0.0);
   CadReport cad_report;
-  const CadFaces cad = read_cad_faces(options.reference_path, options.cad, &cad_report, &result.warnings);
+  CadFaces cad = read_cad_faces(options.reference_path, options.cad, &cad_report, &result.warnings);
   result.cad_inputs.push_back(cad_report);
   report(options.progress, "read CAD", 1.0);
   // Read before the work, so that a bad file stops the job at once.
@@ -276,6 +279,10 @@ InspectResult run_inspect(const InspectOptions& options) {
     outputs.commit();
     result.out_faces_path = options.out_faces_path;
     report(options.progress, "write", 1.0);
+  }
+  if (options.keep_geometry) {
+    result.scan_ref = std::move(scan);
+    result.reference = std::move(cad.mesh);
   }
   return result;
 }

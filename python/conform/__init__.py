@@ -92,7 +92,7 @@ def inspect(scan, reference, **options):
     scan: path, (N, 3) array, (vertices, faces) pair or conform.Geometry; reference: the CAD's path (.step .stp .iges
     .igs). Options as the CLI's flags: transform (path or (4, 4) T_ref_scan), align ("best-fit"), datums (face ids,
     primary first), max_distance, max_normal_angle_deg, form_trim, min_fit_points, tolerances (path), out_faces,
-    units, cad_deflection, cad_angle_deg, cad_save_mesh, progress. Arrays: point_face (N,), each point's face id, 0
+    units, cad_deflection, cad_angle_deg, cad_save_mesh, report, progress. Arrays: point_face (N,), each point's face id, 0
     for none.
     """
     return _result("inspect", _conform.inspect(scan, reference, **options))

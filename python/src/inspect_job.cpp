@@ -12,6 +12,8 @@
 #include "conform/core/units.h"
 #include "conform/pipelines/inspect.h"
 #include "conform/pipelines/inspect_json.h"
+#include "conform/pipelines/inspect_report.h"
+#include "job_report.h"
 
 namespace conform::python {
 
@@ -24,7 +26,8 @@ py::tuple job_inspect(const py::object& scan, const py::object& reference, const
                       double max_distance, double max_normal_angle_deg, double form_trim, std::size_t min_fit_points,
                       const py::object& tolerances, const py::object& out_faces, const std::string& units,
                       const py::object& cad_deflection, const py::object& cad_angle_deg,
-                      const py::object& cad_save_mesh, const py::object& progress_callback) {
+                      const py::object& cad_save_mesh, const py::object& report, const py::object& progress_callback) {
+  const std::string report_path = report_path_of(report);
   Inputs inputs;
   InspectOptions options;
   set_cad_options(cad_deflection, cad_angle_deg, cad_save_mesh, options.cad);
@@ -44,10 +47,12 @@ py::tuple job_inspect(const py::object& scan, const py::object& reference, const
   const Progress progress(progress_callback);
   options.progress = progress.function();
   options.cad.progress = options.progress;
+  options.keep_geometry = !report_path.empty();
   CallFiles files({options.scan_path, options.reference_path, options.transform_path, options.tolerances_path},
-                  {options.out_faces_path, options.cad.save_mesh_path});
+                  {options.out_faces_path, options.cad.save_mesh_path, report_path});
   InspectResult result = released(progress, [&] { return run_inspect(options); });
   const nlohmann::json j = inspect_json(options, result, units);
+  if (!report_path.empty()) write_report(report_path, inspect_report(options, result, j, ""));
   files.commit();
   py::dict arrays;
   arrays["warnings"] = py::cast(result.warnings);
@@ -69,7 +74,7 @@ void bind_inspect_job(py::module_& m) {
         arg("form_trim") = defaults.form_trim, arg("min_fit_points") = defaults.min_fit_points,
         arg("tolerances") = py::none(), arg("out_faces") = py::none(), arg("units") = "mm",
         arg("cad_deflection") = py::none(), arg("cad_angle_deg") = py::none(), arg("cad_save_mesh") = py::none(),
-        arg("progress") = py::none());
+        arg("report") = py::none(), arg("progress") = py::none());
 }
 
 }  // namespace conform::python

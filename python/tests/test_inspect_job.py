@@ -43,8 +43,9 @@ def test_inspect_takes_an_array_and_judges_tolerances(tmp_path, scan):
     points = conform.read(scan).points
     limits = tmp_path / "tight.csv"
     limits.write_text("face,lower_mm,upper_mm,form_mm\n1,-0.02,0.02,\n")
-    r = conform.inspect(points, CYLINDER, tolerances=limits)
+    r = conform.inspect(points, CYLINDER, tolerances=limits, report=tmp_path / "page.html")
     assert r.scan is None  # given in memory
+    assert b"conform inspect" in (tmp_path / "page.html").read_bytes()
     assert r.verdict == "fail" and r.faces[0]["tolerance"]["profile_pass"] is False
 
 

@@ -24,6 +24,10 @@
 #include "conform/core/cad_faces.h"
 #include "conform/core/io.h"
 #include "conform/core/transform_io.h"
+#include "conform/pipelines/inspect.h"
+#include "conform/pipelines/inspect_json.h"
+#include "conform/pipelines/inspect_report.h"
+#include "report_page_checks.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -236,6 +240,22 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
       EXPECT_FALSE(vf[f - 1].contains("tolerance"));
     }
   }
+
+  // The report (in process, as `--report` builds it): the verdict, the scan over the CAD, every face's row tied to
+  // the JSON and showing its value.
+  InspectOptions options;
+  options.scan_path = dir.file("scan.ply");
+  options.reference_path = step;
+  options.transform_path = dir.file("T_ref_scan.txt");
+  options.tolerances_path = dir.file("tolerances.csv");
+  options.keep_geometry = true;
+  const InspectResult result = run_inspect(options);
+  const nlohmann::json json = inspect_json(options, result, "mm");
+  EXPECT_EQ(json.at("faces").dump(), v.at("faces").dump());  // the library call gives the CLI's figures
+  const html::Page page = inspect_report(options, result, json, "");
+  EXPECT_EQ(page.verdict.level, html::Level::kFail);
+  EXPECT_EQ(result.scan_ref.vertices.size(), scan.points.size());
+  EXPECT_GE(test::expect_cells_show_the_json(page), 7u * 6u);  // 7 measured faces: id, points, mean .. form
 
   // A tolerance file that names a face the CAD does not have is bad input: exit 2, naming the line.
   test::write_bytes(dir.file("bad.csv"), "face,lower_mm,upper_mm,form_mm\n9,-0.1,0.1,\n");

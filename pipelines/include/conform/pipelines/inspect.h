@@ -50,6 +50,7 @@ struct InspectOptions {
   // empty: no verdict.
   std::string tolerances_path;
   std::string out_faces_path;  // .csv, one row per face; empty: not written
+  bool keep_geometry = false;  // keep the scan (part frame) and the CAD's mesh in the result, for a report
   ProgressFn progress;         // stages "read scan", "read CAD", "align", "assign", "faces", "write"
 
   // False (and why, naming the option) for a missing input, a reference that is not CAD, a transform with best_fit,
@@ -127,12 +128,15 @@ struct InspectResult {
   std::string termination;           // "ok", or why not
   std::vector<FaceInspection> faces;   // every face of the CAD, by id
   std::vector<std::size_t> point_face;  // per scan point: its face's id, 0 for none
+  std::vector<double> deviation_mm;     // per scan point: its deviation from its face, NaN for none
   std::vector<std::string> warnings;
   std::vector<CadReport> cad_inputs;
   std::string out_faces_path;         // written; empty when not
   // With tolerances: "pass" (every toleranced face measured and within), "fail" (one is not), "incomplete" (none
   // fails, one is not measured); empty without.
   std::string verdict;
+  Mesh scan_ref;   // with options.keep_geometry: the scan's points in the part (datum) frame, mm
+  Mesh reference;  // with options.keep_geometry: the CAD's tessellation, mm
 };
 
 // Throws conform::Error naming the file or option: invalid options, an unreadable or empty scan, a reference that is
