@@ -3,6 +3,8 @@
 
 #include "conform/pipelines/profile_report.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "conform/pipelines/generate_profile.h"
@@ -89,6 +91,28 @@ TEST(ProfileReport, PageDrawsTheFeaturesAndShowsItsJson) {
   const html::SceneObject* edge = test::scene_object(page, "edge points");
   ASSERT_NE(edge, nullptr);
   EXPECT_EQ(edge->positions.size(), job.edge_points);
+  // The plan view: every feature's outline, nominal and mapped, in (along the chord, across) of the straight frame,
+  // one line per feature (NaN between them).
+  ASSERT_FALSE(page.sections.empty());
+  EXPECT_EQ(page.sections.front().title, "Plan view");
+  ASSERT_EQ(page.sections.front().plots.size(), 1u);
+  const html::Plot& plan = page.sections.front().plots[0];
+  const ProfileReportFigures f = profile_report_figures(job);
+  const html::Series* plan_mapped = nullptr;
+  for (const html::Series& s : plan.series) plan_mapped = s.name == "features, mapped" ? &s : plan_mapped;
+  ASSERT_NE(plan_mapped, nullptr);
+  std::size_t at = 0;
+  for (const ProfileFeatureFigure& g : f.features) {
+    for (const Eigen::Vector3d& q : g.mapped) {
+      ASSERT_LT(at, plan_mapped->x.size());
+      EXPECT_NEAR(plan_mapped->x[at], (q - f.straight.origin).dot(f.straight.along), 1e-9);
+      EXPECT_NEAR(plan_mapped->y[at], (q - f.straight.origin).dot(f.straight.across), 1e-9);
+      ++at;
+    }
+    ASSERT_LT(at, plan_mapped->x.size());
+    EXPECT_TRUE(std::isnan(plan_mapped->x[at++])) << g.id;
+  }
+  EXPECT_EQ(at, plan_mapped->x.size());
 }
 
 }  // namespace

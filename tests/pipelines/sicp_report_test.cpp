@@ -106,6 +106,12 @@ TEST(SicpReport, PageDrawsTheResultAndShowsItsJson) {
   ASSERT_NE(normals, nullptr);
   EXPECT_EQ(normals->kind, html::ObjectKind::kArrows);
   EXPECT_EQ(normals->positions.size(), spread_indices(run.result.trajectory_rows, kSicpReportGlyphs).size());
+  // The confidence plot's zone below --min-confidence is a reject band (red), the residual's a green one.
+  ASSERT_EQ(page.sections.back().plots.size(), 3u);
+  ASSERT_TRUE(page.sections.back().plots[1].y_band.has_value());
+  EXPECT_TRUE(page.sections.back().plots[1].y_band->reject);
+  EXPECT_DOUBLE_EQ(page.sections.back().plots[1].y_band->hi, o.compensation.checks.min_confidence);
+  EXPECT_FALSE(page.sections.back().plots[2].y_band->reject);
   // An untrusted run says why in the verdict.
   SicpJobResult failed = run.result;
   failed.compensation.trusted = false;

@@ -94,6 +94,15 @@ TEST(WeldLayersReport, PageDrawsEveryLayerAndShowsItsJson) {
   const html::SceneObject* surface = test::scene_object(page, "eroded surface");
   ASSERT_NE(surface, nullptr);
   EXPECT_EQ(surface->colours.size(), surface->positions.size());
+  // A click on the surface reads its depth; each crater's deepest point has a callout.
+  EXPECT_EQ(surface->values.size(), surface->positions.size());
+  EXPECT_EQ(surface->value_label, "depth (mm)");
+  const std::vector<DamageRegion>& craters = run.job.weld.damage.regions;
+  ASSERT_EQ(page.scene.callouts().size(), craters.size());
+  for (std::size_t k = 0; k < craters.size(); ++k) {
+    EXPECT_EQ(page.scene.callouts()[k].position, craters[k].deepest);
+    EXPECT_EQ(page.scene.callouts()[k].label.rfind("crater " + std::to_string(craters[k].id) + ": ", 0), 0u);
+  }
   ASSERT_TRUE(page.scene.colour_bar().has_value());
   for (int k = 1; k <= run.job.weld.layers; ++k) {
     const html::SceneObject* layer = test::scene_object(page, "layer " + std::to_string(k));
