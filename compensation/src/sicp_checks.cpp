@@ -422,9 +422,14 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
     row.confidence = support[i];
+    // The lower of the edge support and the segments' fit, not their product: each rule refuses on its own terms
+    // (a segment below half confidence is an outlier, a bridge below half is too long), and two passes do not add up
+    // to a refusal (a 30 mm occlusion over a corner, bridged at 0.9, beside a corner segment at 2.2 x the noise: 0.49
+    // and refused, 0.25 mm at peak).
     if (by_segments) {
       const BlendAt b = blend_at(g, s[i]);
-      row.confidence *= (1.0 - b.weight) * c.segment_confidence[b.segment] + b.weight * c.segment_confidence[b.next];
+      row.confidence = std::min(row.confidence, (1.0 - b.weight) * c.segment_confidence[b.segment] +
+                                                    b.weight * c.segment_confidence[b.next]);
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
     if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i] || row.misfit) row.confidence = 0.0;
