@@ -424,8 +424,8 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
     row.confidence = support[i];
     // The lower of the edge support and the segments' fit, not their product: each rule refuses on its own terms
     // (a segment below half confidence is an outlier, a bridge below half is too long), and two passes do not add up
-    // to a refusal (a 30 mm occlusion over a corner, bridged at 0.9, beside a corner segment at 2.2 x the noise: 0.49
-    // and refused, 0.25 mm at peak).
+    // to a refusal (a 30 mm occlusion over a corner, bridged at about 0.9, beside a corner segment whose fit was just
+    // above 0.5: their product 0.49, refused, 0.25 mm at peak).
     if (by_segments) {
       const BlendAt b = blend_at(g, s[i]);
       row.confidence = std::min(row.confidence, (1.0 - b.weight) * c.segment_confidence[b.segment] +
