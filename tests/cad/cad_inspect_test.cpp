@@ -321,6 +321,55 @@ TEST(InspectCommand, DatumFitUndoesTheBestFitsBias) {
   EXPECT_GT(d.at("rotation_deg").get<double>(), 0.001);
 }
 
+// A part made right reads as right: the filleted block (planes, R 10 fillets, 45-degree chamfer cones round its
+// corners, a pocket), scanned with noise only (0.005 mm), every face measured to its exact surface: no mean deviation
+// beyond 0.002 mm, no form beyond the noise's zone, the fillets' radius 10 mm within 0.005 mm, every cylinder fitted.
+TEST(InspectCommand, APerfectPartShowsOnlyItsNoise) {
+  test::TempDir dir;
+  const TopoDS_Shape part = test::filleted_block();
+  const std::string step = dir.file("block.step");
+  test::write_cad(part, step, test::CadFormat::kStep, "MM");
+  const test::SurfaceSample s = test::sample_surface(part, 30000, kNoise, 21);
+  Mesh cloud;
+  cloud.vertices = s.points;
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(dir.file("scan.ply"), cloud, precise);
+  InspectOptions options;
+  options.scan_path = dir.file("scan.ply");
+  options.reference_path = step;
+  const InspectResult r = run_inspect(options);
+  ASSERT_TRUE(r.ok) << r.termination;
+  EXPECT_GE(r.assigned, static_cast<std::size_t>(0.93 * static_cast<double>(s.points.size())));
+  std::size_t cones = 0, fillets = 0;
+  for (const FaceInspection& f : r.faces) {
+    SCOPED_TRACE("face " + std::to_string(f.id) + " " + to_string(f.nominal.type) + ", " + std::to_string(f.points) +
+                 " points");
+    ASSERT_TRUE(f.exact);
+    if (f.points < options.min_fit_points) continue;
+    EXPECT_LT(std::abs(f.deviation.mean_mm), 0.002);
+    EXPECT_LT(f.form.width_mm, 7.0 * kNoise);
+    if (f.nominal.type == CadSurfaceType::kCone) ++cones;
+    if (f.nominal.type == CadSurfaceType::kCylinder) {
+      ++fillets;
+      ASSERT_TRUE(f.fitted) << f.fit_note;
+      EXPECT_NEAR(f.radius_mm, 10.0, 0.005);
+      EXPECT_LT(f.axis_offset_mm, 0.01);
+    }
+    if (f.nominal.type == CadSurfaceType::kPlane) {
+      ASSERT_TRUE(f.fitted) << f.fit_note;
+      // The tilt a least-squares plane takes from the noise: sigma sqrt(12) / (L sqrt(N)) rad across a width L; L taken
+      // as half the square root of the face's area (a 16 x 5 mm pocket wall: 4.5 mm), 4 of those standard deviations.
+      const double width_mm = 0.5 * std::sqrt(f.nominal.area_mm2);
+      const double limit_deg =
+          4.0 * kNoise * std::sqrt(12.0) / (width_mm * std::sqrt(static_cast<double>(f.points))) * 180.0 / M_PI;
+      EXPECT_LT(f.angle_to_nominal_deg, limit_deg);
+    }
+  }
+  EXPECT_EQ(fillets, 4u);
+  EXPECT_GE(cones, 1u);
+}
+
 TEST(InspectCommand, BadUsageIsExitTwo) {
   test::TempDir dir;
   const test::RunResult mesh_reference =
