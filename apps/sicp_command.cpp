@@ -74,6 +74,16 @@ class SicpCommand : public Command {
     c.add_option("--max-row-step", o.checks.max_row_step_mm,
                  "Rows whose correction changes by more than this from the row before (per mm of row spacing), or "
                  "that step back along the path, are untrusted, mm");
+    c.add_option("--max-surface-offset", o.checks.max_surface_offset_mm,
+                 "Rows where the scanned surface lies farther than this off the fitted model along the tool axis "
+                 "(the plane of the face's residuals within 6 mm, significant at 5 standard errors: a dent, a bulge) "
+                 "are untrusted, mm");
+    c.add_option("--max-normal-error-deg", o.checks.max_normal_error_deg,
+                 "Rows whose tool normal is more than this off the scanned surface's slope along the path "
+                 "(significant at 5 standard errors) are untrusted, deg");
+    c.add_option("--max-local-offset", o.checks.max_local_offset_mm,
+                 "Rows where the scan within 4 mm lies farther than this off the model against the rows 8-16 mm "
+                 "before and after (significant at 5 standard errors: a dent a few mm across) are untrusted, mm");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-off-surface", o.checks.max_off_surface,
@@ -83,7 +93,9 @@ class SicpCommand : public Command {
                  "Trajectory rows farther than this from the contour are untrusted, mm");
     c.add_option("--normal-smoothing", o.normals.smooth_mm,
                  "Tool normals averaged along the path over this arc length, mm; 0: not smoothed");
-    c.add_option("--normals", normals_, "Tool normals: rotate (the nominal ones with the blended transforms) or scan (plane fitted around each point)")
+    c.add_option(
+         "--normals", normals_,
+         "Tool normals: rotate (the nominal ones with the blended transforms) or scan (plane fitted around each point)")
         ->check(CLI::IsMember({"scan", "rotate"}));
     c.add_option("--truth", options_.truth_path,
                  "Ground-truth trajectory (same columns and rows): report the error against it");
@@ -171,8 +183,7 @@ class SicpCommand : public Command {
         "checks       noise %.4f mm; %zu blind, %zu outlier segments; %zu rows without edge scan (%zu bridged, "
         "longest stretch %.1f mm); %zu of %zu rows untrusted (lowest confidence %.2f): %s\n",
         k.noise_mm, k.blind_segments.size(), k.outlier_segments.size(), k.unmeasured_rows, k.bridged_rows,
-        k.longest_gap_mm, k.untrusted_rows, k.rows.size(),
-        k.min_confidence, c.trusted ? "trusted" : k.reason.c_str());
+        k.longest_gap_mm, k.untrusted_rows, k.rows.size(), k.min_confidence, c.trusted ? "trusted" : k.reason.c_str());
     if (!r.out_trajectory_path.empty()) std::printf("written      %s\n", r.out_trajectory_path.c_str());
     if (!r.out_rows_path.empty()) std::printf("written      %s\n", r.out_rows_path.c_str());
   }

@@ -170,6 +170,8 @@ bool SicpJobOptions::IsValid(std::string* error) const {
     why = "projection: " + why;
   else if (!compensation.normals.IsValid(&why))
     why = "tool normals: " + why;
+  else if (!compensation.misfit.IsValid(&why))
+    why = "surface misfit: " + why;
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
   return false;

@@ -345,7 +345,8 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
                   "min_edge_points",  "edge_radius",     "max_edge_gap",   "outlier_ratio",    "max_offset",
                   "normal_smoothing", "normals",         "truth",          "out_trajectory",   "out_rows",
                   "report",           "progress",        "cad_deflection", "cad_angle_deg",    "cad_save_mesh",
-                  "max_corner_gap",   "max_edge_offset", "max_row_step",   "max_off_surface"});
+                  "max_corner_gap",   "max_edge_offset", "max_row_step",   "max_off_surface",  "max_surface_offset",
+                  "max_normal_error_deg", "max_local_offset"});
   const auto take = [&kw](const char* name) {
     return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
   };
@@ -395,6 +396,9 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("max_edge_offset", o.checks.max_edge_offset_mm);
   set("max_row_step", o.checks.max_row_step_mm);
   set("max_off_surface", o.checks.max_off_surface);
+  set("max_surface_offset", o.checks.max_surface_offset_mm);
+  set("max_normal_error_deg", o.checks.max_normal_error_deg);
+  set("max_local_offset", o.checks.max_local_offset_mm);
   set("normal_smoothing", o.normals.smooth_mm);
   const Progress progress(take("progress"));
   options.progress = progress.function();

@@ -111,6 +111,10 @@ TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
   EXPECT_NE(no_surface.err.find("missing.ply"), std::string::npos);
   EXPECT_EQ(sicp({"--model", "spline"}).exit_code, 2);
   EXPECT_EQ(sicp({"--surface", surface, "--overlap", "1.5", "--out-trajectory", dir_.file("o.csv")}).exit_code, 2);
+  const auto misfit =
+      sicp({"--surface", surface, "--max-normal-error-deg", "0", "--out-trajectory", dir_.file("o.csv")});
+  EXPECT_EQ(misfit.exit_code, 2);
+  EXPECT_NE(misfit.err.find("tool normal error must be > 0 deg"), std::string::npos) << misfit.err;
   const auto gap = sicp({"--surface", surface, "--max-edge-gap", "-1", "--out-trajectory", dir_.file("o.csv")});
   EXPECT_EQ(gap.exit_code, 2);
   EXPECT_NE(gap.err.find("largest bridged gap"), std::string::npos) << gap.err;
