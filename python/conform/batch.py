@@ -3,8 +3,8 @@
     python3 -m conform.batch MANIFEST.csv --out-dir DIR [--local-workers N | --scheduler tcp://HOST:8786]
                              [--part-timeout SECONDS]
 
-MANIFEST.csv: a header row, then one row per part: `id`, `job` (compare, fit_cylinder, pose_error, saddle, weld_layers,
-profile, tube_joint), then the
+MANIFEST.csv: a header row, then one row per part: `id`, `job` (compare, inspect, fit_cylinder, pose_error, saddle,
+weld_layers, profile, tube_joint), then the
 job's options as columns named like the Python keyword arguments (scan, reference, transform, tolerance, ...). An
 empty cell leaves that option at its default. Relative input paths are relative to the manifest's folder; output
 options (out, out_deviation, ..., report) relative to DIR, and must stay in it.
@@ -12,7 +12,11 @@ options (out, out_deviation, ..., report) relative to DIR, and must stay in it.
 Each part runs in its own process (a crash or a timeout is that part's failure) and writes DIR/<id>.json (the CLI's
 --json for that part) and the outputs it names; a part that fails writes DIR/<id>.error.txt instead and never stops
 the others. DIR/summary.csv gets one row per part: id, job, ok, the headline figures and the error. A rerun skips the
-parts done with the same job, options and inputs (resume) and runs the others again.
+parts done with the same job, options and inputs (resume) and runs the others again. With `inspect` parts,
+DIR/inspect_faces.csv gets one row per CAD face across those parts (statistical process control): the parts that
+measured it, the mean, standard deviation (n - 1), min and max of its per-part mean deviation, its form's mean and
+max, a cylinder's radius mean and standard deviation, and with tolerances Cp and Cpk of the mean deviation and Cpk of
+the form (one-sided).
 """
 
 import argparse
@@ -30,6 +34,7 @@ import tempfile
 # Per job: the CLI's exit-0 test on its JSON, and the figures summary.csv shows.
 HEADLINES = {
     "align": (lambda j: j["converged"], ["rms_mm", "inlier_fraction", "trust", "termination"]),
+    "inspect": (lambda j: j["ok"], ["points", "assigned", "verdict", "termination"]),
     "compare": (lambda j: j["matched"] > 0,
                 ["points", "matched", "rms_mm", "p95_abs_mm", "in_tolerance_pct", "within_tolerance"]),
     "fit_cylinder": (lambda j: j["ok"], ["radius_mm", "rms_mm", "inlier_fraction", "termination"]),
@@ -41,10 +46,11 @@ HEADLINES = {
     "sicp": (lambda j: j["trusted"], ["rms_mm", "trajectory_rows", "termination"]),
     "weld_layers": (lambda j: j["ok"], ["layers", "paths", "total_length_mm", "damage_coverage_pct", "termination"]),
 }
-INPUTS = {"scan", "reference", "transform", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge",
+INPUTS = {"scan", "reference", "transform", "tolerances", "input", "transform_a", "transform_b", "eroded", "edge", "features", "second_edge",
           "leg", "stub", "leg_pose", "leg_markers", "stub_markers", "groove_table",
           "contour", "trajectory", "surface", "truth", "path", "frame"}
 DEFAULT_PART_TIMEOUT_S = 3600.0
+FACES_CSV = "inspect_faces.csv"  # in DIR: the inspect parts' faces across parts
 STATE_DIR = ".conform-batch"  # in DIR: the resume key of each part done (<id>.key)
 _RESULT = "conform.batch result: "  # the line a part's process prints its summary row on
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
@@ -94,6 +100,8 @@ def part_options(row, manifest_dir, out_dir):
             options[key] = output_path(text, out_dir, row.get("id", ""), key)
         elif key in ("axis", "web_normal", "groove_deg", "wall_thickness", "preferred_x"):
             options[key] = [float(v) for v in re.split(r"[ ,]+", text)]
+        elif key == "datums":
+            options[key] = [int(v) for v in re.split(r"[ ,]+", text)]
         else:
             options[key] = _value(text)
     return options
@@ -113,6 +121,7 @@ def check_outputs(parts, manifest, out_dir):
     write another part's input, the manifest or one of the batch's own files (summary.csv, <id>.json,
     <id>.error.txt, .conform-batch/): parts run at the same time, so the last one would silently win."""
     own = {_file_id(os.path.join(out_dir, "summary.csv")): "summary.csv",
+           _file_id(os.path.join(out_dir, FACES_CSV)): FACES_CSV,
            _file_id(os.path.join(out_dir, STATE_DIR)): STATE_DIR,
            _file_id(manifest): "the manifest"}
     for part_id, _, _ in parts:
@@ -385,7 +394,62 @@ def run_batch(manifest, out_dir, client, part_timeout=DEFAULT_PART_TIMEOUT_S, pa
                 summary[spec["id"]] = summary_row(spec["id"], spec["job"], None, f"{type(e).__name__}: {e}")
     ordered = [summary[part_id] for part_id, _, _ in parts]
     write_summary(os.path.join(out_dir, "summary.csv"), ordered)
+    faces = inspect_face_statistics([row for row in ordered if row["job"] == "inspect" and row["ok"]], out_dir)
+    if faces:
+        write_summary(os.path.join(out_dir, FACES_CSV), faces)
     return ordered
+
+
+def _capability(values, lower, upper):
+    """Cp and Cpk of `values` (mean and n - 1 standard deviation) against [lower, upper] (either may be None:
+    one-sided, no Cp); (None, None) for fewer than 2 values or no spread."""
+    if len(values) < 2:
+        return None, None
+    mean = sum(values) / len(values)
+    sigma = (sum((v - mean) ** 2 for v in values) / (len(values) - 1)) ** 0.5
+    if sigma == 0.0 or (lower is None and upper is None):
+        return None, None
+    cp = (upper - lower) / (6.0 * sigma) if lower is not None and upper is not None else None
+    sides = [(upper - mean) if upper is not None else None, (mean - lower) if lower is not None else None]
+    cpk = min(s for s in sides if s is not None) / (3.0 * sigma)
+    return cp, cpk
+
+
+def inspect_face_statistics(rows, out_dir):
+    """One row per CAD face over the inspect parts of `rows` (read from their DIR/<id>.json): the module docstring's
+    figures. Faces are matched by id (the parts are inspected against the same CAD)."""
+    per_face = {}
+    for row in rows:
+        text = _read_small(os.path.join(out_dir, f"{row['id']}.json"))
+        if text is None:
+            continue
+        for face in json.loads(text).get("faces", []):
+            per_face.setdefault(face["id"], []).append(face)
+    out = []
+    for face_id in sorted(per_face):
+        faces = per_face[face_id]
+        measured = [f for f in faces if f.get("points", 0) > 0 and f.get("mean_mm") is not None]
+        means = [f["mean_mm"] for f in measured]
+        forms = [f["form_mm"] for f in measured if f.get("form_mm") is not None]
+        radii = [f["radius_mm"] for f in measured if f.get("radius_mm") is not None]
+        tolerance = next((f["tolerance"] for f in faces if f.get("tolerance")), None) or {}
+        lower, upper, form_limit = tolerance.get("lower_mm"), tolerance.get("upper_mm"), tolerance.get("form_mm")
+        cp, cpk = _capability(means, lower, upper)
+        _, form_cpk = _capability(forms, None, form_limit) if form_limit is not None else (None, None)
+
+        def std(v):
+            return (sum((x - sum(v) / len(v)) ** 2 for x in v) / (len(v) - 1)) ** 0.5 if len(v) > 1 else None
+
+        out.append({"id": face_id, "job": "inspect", "ok": bool(measured), "type": faces[0]["type"],
+                    "parts": len(measured), "mean_mm": sum(means) / len(means) if means else None,
+                    "std_mm": std(means), "min_mm": min((f["min_mm"] for f in measured), default=None),
+                    "max_mm": max((f["max_mm"] for f in measured), default=None),
+                    "form_mean_mm": sum(forms) / len(forms) if forms else None,
+                    "form_max_mm": max(forms, default=None),
+                    "radius_mean_mm": sum(radii) / len(radii) if radii else None, "radius_std_mm": std(radii),
+                    "lower_mm": lower, "upper_mm": upper, "form_limit_mm": form_limit, "cp": cp, "cpk": cpk,
+                    "form_cpk": form_cpk, "error": "" if measured else "no part measured it"})
+    return out
 
 
 def run_one():

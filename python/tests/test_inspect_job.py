@@ -56,3 +56,32 @@ def test_bad_options_name_the_keyword_argument(scan):
         conform.inspect(scan, CYLINDER, align="sideways")
     with pytest.raises(conform.Error, match="datums"):
         conform.inspect(scan, CYLINDER, datums=[7])
+
+
+def test_batch_gives_each_face_across_parts_with_its_capability(tmp_path):
+    """Three parts 0.02, 0.03 and 0.04 mm oversize: face 1's mean deviation over the parts is 0.03 mm with a standard
+    deviation of 0.01 (n - 1), so against +-0.05 Cp = 0.1 / 0.06 = 1.67 and Cpk = 0.02 / 0.03 = 0.67."""
+    from conform import batch
+
+    # In the part frame (no best fit: over a half turn it would move the scan across the axis and take up part of
+    # the oversize).
+    rows = [["id", "job", "scan", "reference", "tolerances"]]
+    for k, oversize in enumerate([0.02, 0.03, 0.04]):
+        scan = tmp_path / f"scan{k}.ply"
+        cli("generate", "tube", "--out", scan, "--radius", 15 + oversize, "--length", 40, "--axis-point", "0,0,20",
+            "--arc-deg", 180, "--edge", 0.5, "--noise", 0.005, "--seed", k + 1, "--quiet")
+        rows.append([f"part{k}", "inspect", scan.name, str(CYLINDER), str(LIMITS)])
+    manifest = tmp_path / "parts.csv"
+    manifest.write_text("\n".join(",".join(r) for r in rows) + "\n")
+    summary = batch.run_batch(manifest, tmp_path / "out", None)
+    assert [r["ok"] for r in summary] == [True, True, True], summary
+    with open(tmp_path / "out" / "inspect_faces.csv", newline="") as f:
+        faces = {r["id"]: r for r in __import__("csv").DictReader(f)}
+    side = faces["1"]
+    assert side["type"] == "cylinder" and int(side["parts"]) == 3
+    assert float(side["mean_mm"]) == pytest.approx(0.03, abs=0.001)
+    assert float(side["std_mm"]) == pytest.approx(0.01, abs=0.001)
+    assert float(side["radius_mean_mm"]) == pytest.approx(15.03, abs=0.001)
+    assert float(side["cp"]) == pytest.approx(1.667, rel=0.1)
+    assert float(side["cpk"]) == pytest.approx(0.667, rel=0.1)
+    assert int(faces["2"]["parts"]) == 0 and faces["2"]["error"] == "no part measured it"  # a cap, never scanned
