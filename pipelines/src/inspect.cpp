@@ -178,6 +178,16 @@ void apply_datums(const CadFaces& cad, const InspectOptions& options, std::vecto
   assign_points(points, normals, cad, options, result);
 }
 
+// Cylinders whose nominal axis is the primary datum's normal (within 0.1 deg): how far their fitted axis leans.
+void add_perpendicularity(const CadFace& primary, InspectResult& result) {
+  const double parallel = std::cos(0.1 * M_PI / 180.0);
+  for (FaceInspection& f : result.faces) {
+    if (!f.fitted || f.nominal.type != CadSurfaceType::kCylinder) continue;
+    if (std::abs(f.nominal.axis.dot(primary.axis)) < parallel) continue;
+    f.perpendicularity_mm = f.length_mm * f.axis.cross(primary.axis).norm();
+  }
+}
+
 void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
                    const CadFaces& cad, const InspectOptions& options, InspectResult& result) {
   report(options.progress, "faces", 0.0);
@@ -269,6 +279,7 @@ InspectResult run_inspect(const InspectOptions& options) {
                   result.max_distance_mm, result.normal_mismatch);
     result.warnings.push_back(text);
   }
+  if (!options.datum_faces.empty()) add_perpendicularity(cad.faces[options.datum_faces[0] - 1], result);
   if (!tolerances.empty()) detail::judge_tolerances(tolerances, result);
   result.ok = result.assigned > 0;
   result.termination = result.ok ? "ok" : "no scan point lies on a face of the CAD (is the scan in the part frame?)";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "conform/core/error.h"
 #include "conform/fitting/cylinder.h"
@@ -67,6 +68,21 @@ void measure_cylinder(const std::vector<Eigen::Vector3d>& points, const std::vec
   const Eigen::Vector3d v = nominal.origin_mm - c.axis_point;
   face.axis_point_mm = c.axis_point + v.dot(face.axis) * face.axis;
   face.axis_offset_mm = (nominal.origin_mm - face.axis_point_mm).norm();
+  // The fitted axis over the points' span, and its ends' distances from the nominal axis.
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const Eigen::Vector3d& p : points) {
+    const double h = (p - face.axis_point_mm).dot(face.axis);
+    low = std::min(low, h);
+    high = std::max(high, h);
+  }
+  face.length_mm = high - low;
+  double farthest = 0.0;
+  for (const double h : {low, high}) {
+    const Eigen::Vector3d end = face.axis_point_mm + h * face.axis;
+    const Eigen::Vector3d from_nominal = end - nominal.origin_mm;
+    farthest = std::max(farthest, (from_nominal - from_nominal.dot(nominal.axis) * nominal.axis).norm());
+  }
+  face.position_mm = 2.0 * farthest;
   std::vector<double> residuals;
   residuals.reserve(points.size());
   for (const Eigen::Vector3d& p : points) residuals.push_back(signed_distance(c, p));

@@ -89,6 +89,10 @@ nlohmann::json face_json(const FaceInspection& f) {
     j["axis_point_mm"] = json_of(f.axis_point_mm, !f.fitted);
     j["axis_offset_mm"] = number_or_null(f.fitted, f.axis_offset_mm);
     j["axis_angle_deg"] = number_or_null(f.fitted, f.axis_angle_deg);
+    j["length_mm"] = number_or_null(f.fitted, f.length_mm);
+    j["diameter_mm"] = number_or_null(f.fitted, 2.0 * f.radius_mm);
+    j["position_mm"] = number_or_null(f.fitted, f.position_mm);
+    j["perpendicularity_mm"] = number_or_null(f.fitted, f.perpendicularity_mm);
   }
   if (f.nominal.type == CadSurfaceType::kPlane) {
     j["normal"] = json_of(f.normal, !f.fitted);

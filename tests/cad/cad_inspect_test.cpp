@@ -187,12 +187,17 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
         EXPECT_NEAR(face.at("radius_mm").get<double>(), kRadius + kOversize, 0.002);
         EXPECT_EQ(face.at("nominal_radius_mm").get<double>(), kRadius);
         EXPECT_LT(face.at("axis_offset_mm").get<double>(), 0.003);
+        EXPECT_LT(face.at("position_mm").get<double>(), 0.006);
+        EXPECT_NEAR(face.at("diameter_mm").get<double>(), 2.0 * (kRadius + kOversize), 0.004);
         EXPECT_LT(form, 7.0 * kNoise);
         break;
       case Role::kShiftedHole:
         EXPECT_NEAR(face.at("radius_mm").get<double>(), kRadius, 0.002);
         EXPECT_NEAR(face.at("axis_offset_mm").get<double>(), kShift, 0.003);
         EXPECT_NEAR(face.at("axis_point_mm")[0].get<double>(), 60.0 + kShift, 0.003);
+        EXPECT_NEAR(face.at("position_mm").get<double>(), 2.0 * kShift, 0.006);  // a diameter zone
+        EXPECT_NEAR(face.at("length_mm").get<double>(), 20.0, 0.5);
+        EXPECT_TRUE(face.at("perpendicularity_mm").is_null());  // no datums
         EXPECT_NEAR(face.at("max_mm").get<double>(), kShift, 4.0 * kNoise);
         EXPECT_NEAR(face.at("min_mm").get<double>(), -kShift, 4.0 * kNoise);
         EXPECT_LT(form, 7.0 * kNoise);  // about the fitted cylinder the shift is gone
@@ -314,6 +319,9 @@ TEST(InspectCommand, DatumFitUndoesTheBestFitsBias) {
   EXPECT_NEAR(datum[bottom - 1].at("mean_mm").get<double>(), 0.0, 0.001);
   EXPECT_NEAR(datum[tilted - 1].at("angle_to_nominal_deg").get<double>(), kTiltDeg, 0.005);
   EXPECT_NEAR(datum[shifted - 1].at("axis_offset_mm").get<double>(), kShift, 0.003);
+  EXPECT_NEAR(datum[shifted - 1].at("position_mm").get<double>(), 2.0 * kShift, 0.006);
+  // The holes are square to the bottom (datum A): their axes lean by the fit's noise only, over 20 mm.
+  EXPECT_LT(datum[shifted - 1].at("perpendicularity_mm").get<double>(), 0.005);
   // The best fit is measurably off the truth on the same faces (which is why datums exist).
   EXPECT_GT(std::abs(fit[top - 1].at("mean_mm").get<double>() - top_truth), 0.005);
   const nlohmann::json& d = runs[1].at("datums");

@@ -9,6 +9,7 @@
 // forced onto one.
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,6 +105,14 @@ struct FaceInspection {
   Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder: the fitted axis's point nearest the nominal's
   double axis_offset_mm = 0.0;   // cylinder: from the nominal axis point at the face's middle to the fitted axis
   double axis_angle_deg = 0.0;   // cylinder: between the fitted and the nominal axis
+  double length_mm = 0.0;        // cylinder: the span of its points along the fitted axis
+  // cylinder: twice the larger distance of the fitted axis's ends (at the points' span) from the nominal axis: the
+  // diameter of the smallest zone about the nominal axis holding the fitted axis (ISO 1101 position, in the frame of
+  // the inspection: the datum frame with --datums)
+  double position_mm = 0.0;
+  // cylinder, with a primary datum plane its axis is nominally perpendicular to: length_mm x sin(the fitted axis's
+  // angle from the datum's normal), the diameter of the zone perpendicular to the datum holding the axis; NaN else
+  double perpendicularity_mm = std::numeric_limits<double>::quiet_NaN();
 
   std::optional<FaceVerdict> verdict;  // with --tolerances, for the faces it names
 };
