@@ -19,7 +19,7 @@ void number_or_empty(CsvWriter& csv, bool has, double value) {
 CsvWriter faces_csv(const InspectResult& result) {
   CsvWriter csv({"id", "type", "points", "deviation_to", "centroid_x_mm", "centroid_y_mm", "centroid_z_mm", "mean_mm",
                  "std_mm", "min_mm", "max_mm", "form_mm", "form_reference", "radius_mm", "nominal_radius_mm",
-                 "axis_offset_mm", "axis_angle_deg", "angle_to_nominal_deg", "plane_offset_mm", "verdict"});
+                 "axis_offset_mm", "axis_angle_deg", "position_mm", "perpendicularity_mm", "angle_to_nominal_deg", "plane_offset_mm", "verdict"});
   for (const FaceInspection& f : result.faces) {
     const bool seen = f.points > 0;
     const bool cylinder = f.fitted && f.nominal.type == CadSurfaceType::kCylinder;
@@ -37,6 +37,8 @@ CsvWriter faces_csv(const InspectResult& result) {
     number_or_empty(csv, f.nominal.type == CadSurfaceType::kCylinder, f.nominal.radius_mm);
     number_or_empty(csv, cylinder, f.axis_offset_mm);
     number_or_empty(csv, cylinder, f.axis_angle_deg);
+    number_or_empty(csv, cylinder, f.position_mm);
+    number_or_empty(csv, cylinder, f.perpendicularity_mm);
     number_or_empty(csv, plane, f.angle_to_nominal_deg);
     number_or_empty(csv, plane, f.plane_offset_mm);
     csv.cell(!f.verdict ? "" : !f.verdict->measured ? "not measured" : f.verdict->pass ? "pass" : "fail");
