@@ -126,6 +126,9 @@ class InspectCommand : public Command {
       if (f.fitted && f.nominal.type == CadSurfaceType::kCylinder) {
         std::printf("radius %.4f (nominal %.4f), axis offset %.4f mm, %.3f deg\n", f.radius_mm, f.nominal.radius_mm,
                     f.axis_offset_mm, f.axis_angle_deg);
+      } else if (f.fitted && f.nominal.type == CadSurfaceType::kSphere) {
+        std::printf("radius %.4f (nominal %.4f), centre offset %.4f mm\n", f.radius_mm, f.nominal.radius_mm,
+                    f.centre_offset_mm);
       } else if (f.fitted && f.nominal.type == CadSurfaceType::kPlane) {
         std::printf("normal %.4f deg from nominal, offset %.4f mm\n", f.angle_to_nominal_deg, f.plane_offset_mm);
       } else {

@@ -23,6 +23,7 @@ CsvWriter faces_csv(const InspectResult& result) {
   for (const FaceInspection& f : result.faces) {
     const bool seen = f.points > 0;
     const bool cylinder = f.fitted && f.nominal.type == CadSurfaceType::kCylinder;
+    const bool sphere = f.fitted && f.nominal.type == CadSurfaceType::kSphere;
     const bool plane = f.fitted && f.nominal.type == CadSurfaceType::kPlane;
     csv.cell(static_cast<std::int64_t>(f.id)).cell(to_string(f.nominal.type));
     csv.cell(static_cast<std::int64_t>(f.points)).cell(f.exact ? "exact surface" : "mesh");
@@ -33,8 +34,9 @@ CsvWriter faces_csv(const InspectResult& result) {
     number_or_empty(csv, seen, f.deviation.max_mm);
     number_or_empty(csv, f.form_measured, f.form.width_mm);
     csv.cell(f.form_measured ? f.form_reference : "");
-    number_or_empty(csv, cylinder, f.radius_mm);
-    number_or_empty(csv, f.nominal.type == CadSurfaceType::kCylinder, f.nominal.radius_mm);
+    number_or_empty(csv, cylinder || sphere, f.radius_mm);
+    number_or_empty(csv, f.nominal.type == CadSurfaceType::kCylinder || f.nominal.type == CadSurfaceType::kSphere,
+                    f.nominal.radius_mm);
     number_or_empty(csv, cylinder, f.axis_offset_mm);
     number_or_empty(csv, cylinder, f.axis_angle_deg);
     number_or_empty(csv, cylinder, f.position_mm);

@@ -91,6 +91,24 @@ void measure_cylinder(const std::vector<Eigen::Vector3d>& points, const std::vec
   face.form = form_zone(residuals, options.form_trim);
 }
 
+void measure_sphere(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
+  const SphereFit fit = fit_sphere(points);
+  if (!fit.ok) {
+    face.fit_note = "sphere fit: the points do not determine a sphere (on a plane or a circle, or no convergence)";
+    return;
+  }
+  face.fitted = true;
+  face.radius_mm = fit.radius_mm;
+  face.centre_mm = fit.centre;
+  face.centre_offset_mm = (fit.centre - face.nominal.origin_mm).norm();
+  std::vector<double> residuals;
+  residuals.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) residuals.push_back((p - fit.centre).norm() - fit.radius_mm);
+  face.form_measured = true;
+  face.form_reference = "least-squares sphere";
+  face.form = form_zone(residuals, options.form_trim);
+}
+
 }  // namespace
 
 void measure_face(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
@@ -108,6 +126,7 @@ void measure_face(const std::vector<Eigen::Vector3d>& points, const std::vector<
   }
   if (face.nominal.type == CadSurfaceType::kPlane) measure_plane(points, options, face);
   if (face.nominal.type == CadSurfaceType::kCylinder) measure_cylinder(points, normals, options, face);
+  if (face.nominal.type == CadSurfaceType::kSphere) measure_sphere(points, options, face);
   if (!face.form_measured) {
     // No feature fitted (another surface, or the fit failed): the zone of the deviations from the nominal surface,
     // which holds the feature's size and position errors as well as its form.

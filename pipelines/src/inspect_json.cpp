@@ -94,6 +94,12 @@ nlohmann::json face_json(const FaceInspection& f) {
     j["position_mm"] = number_or_null(f.fitted, f.position_mm);
     j["perpendicularity_mm"] = number_or_null(f.fitted, f.perpendicularity_mm);
   }
+  if (f.nominal.type == CadSurfaceType::kSphere) {
+    j["nominal_radius_mm"] = f.nominal.radius_mm;
+    j["radius_mm"] = number_or_null(f.fitted, f.radius_mm);
+    j["centre_mm"] = json_of(f.centre_mm, !f.fitted);
+    j["centre_offset_mm"] = number_or_null(f.fitted, f.centre_offset_mm);
+  }
   if (f.nominal.type == CadSurfaceType::kPlane) {
     j["normal"] = json_of(f.normal, !f.fitted);
     j["angle_to_nominal_deg"] = number_or_null(f.fitted, f.angle_to_nominal_deg);

@@ -27,6 +27,11 @@ std::string feature_text(const FaceInspection& f) {
                   f.nominal.radius_mm, f.axis_offset_mm, f.axis_angle_deg);
     return text;
   }
+  if (f.fitted && f.nominal.type == CadSurfaceType::kSphere) {
+    std::snprintf(text, sizeof text, "radius %.4f (nominal %.4f) mm, centre offset %.4f mm", f.radius_mm,
+                  f.nominal.radius_mm, f.centre_offset_mm);
+    return text;
+  }
   if (f.fitted && f.nominal.type == CadSurfaceType::kPlane) {
     std::snprintf(text, sizeof text, "normal %.4f deg from nominal, offset %.4f mm", f.angle_to_nominal_deg,
                   f.plane_offset_mm);

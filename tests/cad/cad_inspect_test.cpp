@@ -16,6 +16,7 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <TopoDS_Shape.hxx>
 #include <gp_Ax2.hxx>
 #include <nlohmann/json.hpp>
@@ -376,6 +377,42 @@ TEST(InspectCommand, APerfectPartShowsOnlyItsNoise) {
   }
   EXPECT_EQ(fillets, 4u);
   EXPECT_GE(cones, 1u);
+}
+
+// A ball R 20 mm made 0.03 mm oversize and its centre moved 0.05 mm along x, a cap of it scanned (z > 5 mm) with
+// noise: the least-squares sphere finds both; its sphericity is the noise's zone.
+TEST(InspectCommand, AnOversizeShiftedSphereIsMeasured) {
+  test::TempDir dir;
+  const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 20.0).Shape();
+  const std::string step = dir.file("ball.step");
+  test::write_cad(ball, step, test::CadFormat::kStep, "MM");
+  const test::SurfaceSample s = test::sample_surface(ball, 20000, 0.0, 31);
+  std::mt19937_64 random(4);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  const Eigen::Vector3d shift(0.05, 0.0, 0.0);
+  Mesh cloud;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    if (s.points[i].z() < 5.0) continue;
+    cloud.vertices.push_back(s.points[i] * (20.03 / 20.0) + shift + noise(random) * s.normals[i]);
+  }
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(dir.file("scan.ply"), cloud, precise);
+  InspectOptions options;
+  options.scan_path = dir.file("scan.ply");
+  options.reference_path = step;
+  const InspectResult r = run_inspect(options);
+  ASSERT_TRUE(r.ok) << r.termination;
+  ASSERT_EQ(r.faces.size(), 1u);
+  const FaceInspection& f = r.faces[0];
+  ASSERT_EQ(f.nominal.type, CadSurfaceType::kSphere);
+  ASSERT_TRUE(f.fitted) << f.fit_note;
+  EXPECT_EQ(f.form_reference, "least-squares sphere");
+  EXPECT_NEAR(f.radius_mm, 20.03, 0.003);
+  EXPECT_NEAR(f.centre_offset_mm, 0.05, 0.005);
+  EXPECT_NEAR(f.centre_mm.x(), 0.05, 0.005);
+  EXPECT_LT(f.form.width_mm, 7.0 * kNoise);
+  EXPECT_GT(f.deviation.mean_mm, 0.0);  // oversize: material outside the CAD
 }
 
 TEST(InspectCommand, BadUsageIsExitTwo) {

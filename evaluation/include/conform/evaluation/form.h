@@ -26,6 +26,18 @@ struct PlaneFit {
 // smallest eigenvector (Pearson 1901), accumulated in double relative to the centroid. Fewer than 3 points: ok false.
 PlaneFit fit_plane(const std::vector<Eigen::Vector3d>& points);
 
+struct SphereFit {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // mm
+  double radius_mm = 0.0;
+  double rms_mm = 0.0;  // RMS of |p - centre| - radius
+  bool ok = false;      // at least 4 points, not on a plane or a circle, and Gauss-Newton converged
+};
+
+// The sphere minimising the sum of squared distances |p - c| - r: the algebraic fit (|p|^2 = 2 c.p + k, linear least
+// squares; Kasa 1976) as the start, then Gauss-Newton on the geometric residuals until a step moves the centre and
+// radius by less than 1e-12 of the radius (at most 50 steps). Relative to the centroid, in double.
+SphereFit fit_sphere(const std::vector<Eigen::Vector3d>& points);
+
 struct FormZone {
   double width_mm = 0.0;       // upper minus lower trimmed residual (the percentiles below)
   double lower_mm = 0.0;       // the trim_share / 2 percentile of the residuals

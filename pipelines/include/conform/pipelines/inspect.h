@@ -87,19 +87,22 @@ struct FaceInspection {
   Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();  // of its points
   DeviationStatistics deviation;                          // signed, + outside; count 0 without points
 
-  // The form: the zone of the residuals about `form_reference` ("least-squares plane", "least-squares cylinder", or
+  // The form: the zone of the residuals about `form_reference` ("least-squares plane", "least-squares cylinder",
+  // "least-squares sphere", or
   // "nominal surface" where no feature is fitted); measured = false with fewer than min_fit_points points.
   bool form_measured = false;
   std::string form_reference;
   FormZone form;
 
-  // The fitted feature (planes and cylinders with enough points); fit_note says why not when fitted is false.
+  // The fitted feature (planes, cylinders and spheres with enough points); fit_note says why not when fitted is false.
   bool fitted = false;
   std::string fit_note;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // plane: fitted, oriented like the nominal (outward)
   double angle_to_nominal_deg = 0.0;                 // plane: between fitted and nominal normals
   double plane_offset_mm = 0.0;  // plane: the fitted plane's distance from the nominal at the face's centre, + out
-  double radius_mm = 0.0;        // cylinder: fitted
+  double radius_mm = 0.0;        // cylinder, sphere: fitted
+  Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // sphere: fitted centre
+  double centre_offset_mm = 0.0;  // sphere: from the nominal centre
   double radius_std_mm = 0.0;    // cylinder: its standard deviation from the fit (fitting/cylinder.h)
   Eigen::Vector3d axis = Eigen::Vector3d::Zero();        // cylinder: fitted, oriented like the nominal axis
   Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder: the fitted axis's point nearest the nominal's
