@@ -117,6 +117,23 @@ double mean(const std::vector<double>& v) {
   return sum / static_cast<double>(v.size());
 }
 
+// The points as a cloud .ply in double precision (the scan's coordinates to the last bit).
+void write_scan(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
+  Mesh cloud;
+  cloud.vertices = points;
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(path, cloud, precise);
+}
+
+// run_inspect on `scan` against `step` in the part frame, with the defaults.
+InspectResult inspect_in_part_frame(const std::string& scan, const std::string& step) {
+  InspectOptions options;
+  options.scan_path = scan;
+  options.reference_path = step;
+  return run_inspect(options);
+}
+
 TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   test::TempDir dir;
   const TopoDS_Shape part = block_with_two_holes();
@@ -130,11 +147,9 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   Eigen::Isometry3d T_scan_ref = Eigen::Isometry3d::Identity();
   T_scan_ref.rotate(Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()));
   T_scan_ref.translation() = Eigen::Vector3d(5.0, -3.0, 2.0);
-  Mesh cloud;
-  for (const Eigen::Vector3d& p : scan.points) cloud.vertices.push_back(T_scan_ref * p);
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(dir.file("scan.ply"), cloud, precise);
+  std::vector<Eigen::Vector3d> moved;
+  for (const Eigen::Vector3d& p : scan.points) moved.push_back(T_scan_ref * p);
+  write_scan(dir.file("scan.ply"), moved);
   write_transform(dir.file("T_ref_scan.txt"), T_scan_ref.inverse());
 
   const test::RunResult r =
@@ -284,11 +299,9 @@ TEST(InspectCommand, DatumFitUndoesTheBestFitsBias) {
   Eigen::Isometry3d T_scan_ref = Eigen::Isometry3d::Identity();
   T_scan_ref.rotate(Eigen::AngleAxisd(0.5 * M_PI / 180.0, Eigen::Vector3d(3, -1, 2).normalized()));
   T_scan_ref.translation() = Eigen::Vector3d(0.4, 0.3, -0.5);
-  Mesh cloud;
-  for (const Eigen::Vector3d& p : scan.points) cloud.vertices.push_back(T_scan_ref * p);
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(dir.file("scan.ply"), cloud, precise);
+  std::vector<Eigen::Vector3d> moved;
+  for (const Eigen::Vector3d& p : scan.points) moved.push_back(T_scan_ref * p);
+  write_scan(dir.file("scan.ply"), moved);
   std::size_t bottom = 0, side_x0 = 0, side_y60 = 0, top = 0, tilted = 0, shifted = 0;
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {
     const CadFace& face = cad.faces[f];
@@ -339,15 +352,8 @@ TEST(InspectCommand, APerfectPartShowsOnlyItsNoise) {
   const std::string step = dir.file("block.step");
   test::write_cad(part, step, test::CadFormat::kStep, "MM");
   const test::SurfaceSample s = test::sample_surface(part, 30000, kNoise, 21);
-  Mesh cloud;
-  cloud.vertices = s.points;
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(dir.file("scan.ply"), cloud, precise);
-  InspectOptions options;
-  options.scan_path = dir.file("scan.ply");
-  options.reference_path = step;
-  const InspectResult r = run_inspect(options);
+  write_scan(dir.file("scan.ply"), s.points);
+  const InspectResult r = inspect_in_part_frame(dir.file("scan.ply"), step);
   ASSERT_TRUE(r.ok) << r.termination;
   EXPECT_GE(r.assigned, static_cast<std::size_t>(0.93 * static_cast<double>(s.points.size())));
   std::size_t cones = 0, fillets = 0;
@@ -355,7 +361,7 @@ TEST(InspectCommand, APerfectPartShowsOnlyItsNoise) {
     SCOPED_TRACE("face " + std::to_string(f.id) + " " + to_string(f.nominal.type) + ", " + std::to_string(f.points) +
                  " points");
     ASSERT_TRUE(f.exact);
-    if (f.points < options.min_fit_points) continue;
+    if (f.points < InspectOptions{}.min_fit_points) continue;
     EXPECT_LT(std::abs(f.deviation.mean_mm), 0.002);
     EXPECT_LT(f.form.width_mm, 7.0 * kNoise);
     if (f.nominal.type == CadSurfaceType::kCone) ++cones;
@@ -390,18 +396,13 @@ TEST(InspectCommand, AnOversizeShiftedSphereIsMeasured) {
   std::mt19937_64 random(4);
   std::normal_distribution<double> noise(0.0, kNoise);
   const Eigen::Vector3d shift(0.05, 0.0, 0.0);
-  Mesh cloud;
+  std::vector<Eigen::Vector3d> cap;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
     if (s.points[i].z() < 5.0) continue;
-    cloud.vertices.push_back(s.points[i] * (20.03 / 20.0) + shift + noise(random) * s.normals[i]);
+    cap.push_back(s.points[i] * (20.03 / 20.0) + shift + noise(random) * s.normals[i]);
   }
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(dir.file("scan.ply"), cloud, precise);
-  InspectOptions options;
-  options.scan_path = dir.file("scan.ply");
-  options.reference_path = step;
-  const InspectResult r = run_inspect(options);
+  write_scan(dir.file("scan.ply"), cap);
+  const InspectResult r = inspect_in_part_frame(dir.file("scan.ply"), step);
   ASSERT_TRUE(r.ok) << r.termination;
   ASSERT_EQ(r.faces.size(), 1u);
   const FaceInspection& f = r.faces[0];
