@@ -294,6 +294,7 @@ InspectResult run_inspect(const InspectOptions& options) {
   if (options.keep_geometry) {
     result.scan_ref = std::move(scan);
     result.reference = std::move(cad.mesh);
+    result.reference_triangle_face = std::move(cad.triangle_face);
   }
   return result;
 }

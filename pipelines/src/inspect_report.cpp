@@ -68,6 +68,39 @@ html::Table faces_table(const InspectResult& r) {
   return t;
 }
 
+// One layer per measured or toleranced face (its triangles, so that it can be shown alone): red when it fails its
+// tolerances (shown when the page opens), green when it passes, grey otherwise (hidden). At most kMaxFaceLayers.
+constexpr std::size_t kMaxFaceLayers = 200;
+
+void add_face_layers(const InspectResult& r, html::Page& page) {
+  if (r.reference_triangle_face.size() != r.reference.faces.size()) return;
+  std::vector<std::vector<std::size_t>> triangles(r.faces.size());
+  for (std::size_t t = 0; t < r.reference.faces.size(); ++t) {
+    triangles[static_cast<std::size_t>(r.reference_triangle_face[t])].push_back(t);
+  }
+  std::size_t layers = 0;
+  for (std::size_t k = 0; k < r.faces.size() && layers < kMaxFaceLayers; ++k) {
+    const FaceInspection& f = r.faces[k];
+    if ((f.points == 0 && !f.verdict) || triangles[k].empty()) continue;
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<Face> faces;
+    for (const std::size_t t : triangles[k]) {
+      const Face& tri = r.reference.faces[t];
+      const auto base = static_cast<std::int32_t>(vertices.size());
+      for (const std::int32_t v : tri) vertices.push_back(r.reference.vertices[static_cast<std::size_t>(v)]);
+      faces.push_back({base, base + 1, base + 2});
+    }
+    const bool judged = f.verdict && f.verdict->measured;
+    const bool fails = judged && !f.verdict->pass;
+    const std::string state = !f.verdict ? "" : !judged ? ": not measured" : fails ? ": FAIL" : ": pass";
+    html::SceneObject& layer =
+        page.scene.add_mesh("face " + std::to_string(f.id) + " " + to_string(f.nominal.type) + state, vertices, faces,
+                            fails ? html::kRed : judged ? html::kGreen : html::kGrey, 0.6);
+    layer.visible = fails;
+    ++layers;
+  }
+}
+
 }  // namespace
 
 html::Page inspect_report(const InspectOptions& options, const InspectResult& r, const nlohmann::json& json,
@@ -102,11 +135,13 @@ html::Page inspect_report(const InspectOptions& options, const InspectResult& r,
         "of planes, cylinders, cones, spheres and tori, to the tessellation for other faces. Points on no face are "
         "grey.");
   }
+  add_face_layers(r, page);
   html::Section faces;
   faces.title = "Faces";
   faces.paragraphs.push_back(
       "Form: the width of the zone about the least-squares plane or cylinder (else the nominal surface) holding all "
-      "but the trimmed share of the residuals (docs/inspect.md).");
+      "but the trimmed share of the residuals (docs/inspect.md). In the view each measured face is a layer of its own "
+      "(red: fails its tolerances, shown; green: passes; grey: not toleranced).");
   faces.tables.push_back(faces_table(r));
   page.sections.push_back(std::move(faces));
   return page;

@@ -277,6 +277,18 @@ TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   EXPECT_EQ(page.verdict.level, html::Level::kFail);
   EXPECT_EQ(result.scan_ref.vertices.size(), scan.points.size());
   EXPECT_GE(test::expect_cells_show_the_json(page), 7u * 6u);  // 7 measured faces: id, points, mean .. form
+  // Each measured or toleranced face a layer of its own, the failing ones shown, red.
+  std::size_t face_layers = 0, shown = 0;
+  for (const html::SceneObject& o : page.scene.objects()) {
+    if (o.name.rfind("face ", 0) != 0) continue;
+    ++face_layers;
+    if (o.visible) {
+      ++shown;
+      EXPECT_NE(o.name.find("FAIL"), std::string::npos) << o.name;
+    }
+  }
+  EXPECT_EQ(face_layers, 8u);  // 7 measured, and the unscanned one named by the tolerances
+  EXPECT_EQ(shown, 2u);        // the bowed top and the oversize hole
 
   // A tolerance file that names a face the CAD does not have is bad input: exit 2, naming the line.
   test::write_bytes(dir.file("bad.csv"), "face,lower_mm,upper_mm,form_mm\n9,-0.1,0.1,\n");

@@ -149,6 +149,7 @@ struct InspectResult {
   std::string verdict;
   Mesh scan_ref;   // with options.keep_geometry: the scan's points in the part (datum) frame, mm
   Mesh reference;  // with options.keep_geometry: the CAD's tessellation, mm
+  std::vector<std::int32_t> reference_triangle_face;  // with keep_geometry: per triangle of reference, its face index
 };
 
 // Throws conform::Error naming the file or option: invalid options, an unreadable or empty scan, a reference that is
