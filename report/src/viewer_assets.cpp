@@ -123,6 +123,14 @@ const char* viewer_js() {
     var up = new THREE.Vector3().crossVectors(right, forward).normalize();
     var total = 0;
     points.forEach(function (a) { total += a.length / 3; });
+    if (total === 0) {  // nothing shown when the page opens: the box's corners
+      var corners = [];
+      for (var c = 0; c < 8; ++c) {
+        corners.push(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y, c & 4 ? box.max.z : box.min.z);
+      }
+      points = [corners];
+      total = 8;
+    }
     var stride = Math.max(1, Math.ceil(total / 60000)), xyz = [], x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     var q = new THREE.Vector3();
     points.forEach(function (a) {
@@ -133,7 +141,6 @@ const char* viewer_js() {
         x0 = Math.min(x0, x), x1 = Math.max(x1, x), y0 = Math.min(y0, y), y1 = Math.max(y1, y);
       }
     });
-    if (!xyz.length) x0 = x1 = y0 = y1 = 0;
     var mx = 0.5 * (x0 + x1), my = 0.5 * (y0 + y1);
     var tan_v = Math.tan(camera.fov * Math.PI / 360) * fill, tan_h = tan_v * aspect, distance = 1e-6 * big;
     for (var j = 0; j < xyz.length; j += 3) {
