@@ -215,6 +215,39 @@ void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector
   }
 }
 
+// PCA normals of the scan's points (sign ignored by the normal check).
+std::vector<Eigen::Vector3d> scan_normals(const Mesh& scan, int k) {
+  NormalOptions pca;
+  pca.k = k;
+  std::vector<Eigen::Vector3d> normals;
+  normals.reserve(scan.vertices.size());
+  for (const auto& n : estimate_normals(to_cloud(scan), pca)) normals.emplace_back(n.normal_x, n.normal_y, n.normal_z);
+  return normals;
+}
+
+// More than 5 % of the scan on no face is worth a line.
+void warn_unassigned(InspectResult& result) {
+  const double unassigned = static_cast<double>(result.scan_points - result.assigned);
+  if (!(unassigned > 0.05 * static_cast<double>(result.scan_points))) return;
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "%.1f %% of the scan is on no face (%zu beyond %.3g mm, %zu with a normal not the face's): "
+                "points off the part, or a larger deviation than the cut (raise --max-distance)",
+                100.0 * unassigned / static_cast<double>(result.scan_points), result.beyond_distance,
+                result.max_distance_mm, result.normal_mismatch);
+  result.warnings.push_back(text);
+}
+
+void write_faces(const InspectOptions& options, InspectResult& result) {
+  if (options.out_faces_path.empty()) return;
+  report(options.progress, "write", 0.0);
+  OutputSet outputs;
+  detail::faces_csv(result).write(options.out_faces_path);
+  outputs.commit();
+  result.out_faces_path = options.out_faces_path;
+  report(options.progress, "write", 1.0);
+}
+
 }  // namespace
 
 bool InspectOptions::IsValid(std::string* error) const {
@@ -260,37 +293,17 @@ InspectResult run_inspect(const InspectOptions& options) {
   result.max_distance_mm = result.max_distance_automatic
                                ? std::max(kInspectMinAutoDistanceMm, kInspectNoiseSigmas * result.scan_noise_mm)
                                : options.max_distance_mm;
-  NormalOptions pca;
-  pca.k = options.normal_neighbours;
-  std::vector<Eigen::Vector3d> normals;
-  normals.reserve(scan.vertices.size());
-  for (const auto& n : estimate_normals(to_cloud(scan), pca)) normals.emplace_back(n.normal_x, n.normal_y, n.normal_z);
+  std::vector<Eigen::Vector3d> normals = scan_normals(scan, options.normal_neighbours);
 
   assign_points(scan.vertices, normals, cad, options, result);
   if (!options.datum_faces.empty()) apply_datums(cad, options, scan.vertices, normals, result);
   measure_faces(scan.vertices, normals, cad, options, result);
-  const double unassigned = static_cast<double>(result.scan_points - result.assigned);
-  if (unassigned > 0.05 * static_cast<double>(result.scan_points)) {
-    char text[240];
-    std::snprintf(text, sizeof text,
-                  "%.1f %% of the scan is on no face (%zu beyond %.3g mm, %zu with a normal not the face's): "
-                  "points off the part, or a larger deviation than the cut (raise --max-distance)",
-                  100.0 * unassigned / static_cast<double>(result.scan_points), result.beyond_distance,
-                  result.max_distance_mm, result.normal_mismatch);
-    result.warnings.push_back(text);
-  }
+  warn_unassigned(result);
   if (!options.datum_faces.empty()) add_perpendicularity(cad.faces[options.datum_faces[0] - 1], result);
   if (!tolerances.empty()) detail::judge_tolerances(tolerances, result);
   result.ok = result.assigned > 0;
   result.termination = result.ok ? "ok" : "no scan point lies on a face of the CAD (is the scan in the part frame?)";
-  if (!options.out_faces_path.empty()) {
-    report(options.progress, "write", 0.0);
-    OutputSet outputs;
-    detail::faces_csv(result).write(options.out_faces_path);
-    outputs.commit();
-    result.out_faces_path = options.out_faces_path;
-    report(options.progress, "write", 1.0);
-  }
+  write_faces(options, result);
   if (options.keep_geometry) {
     result.scan_ref = std::move(scan);
     result.reference = std::move(cad.mesh);
