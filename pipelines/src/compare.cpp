@@ -6,17 +6,23 @@
 #include <string>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/cad.h"
+#include "conform/core/cad_faces.h"
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
 #include "conform/core/io.h"
 #include "conform/core/output_set.h"
 #include "conform/core/transform_io.h"
 #include "conform/core/units.h"
+#include "conform/evaluation/cad_deviation.h"
 #include "cad_inputs.h"
 
 namespace conform {
-
 namespace {
+
+// How far (in chordal deflections of the tessellation) a point's exact-face distance may differ from its
+// tessellation distance and still be taken: the chords lie within one deflection of the face.
+constexpr double kExactFaceBoundDeflections = 2.0;
 
 bool wrong_extension(const std::string& path, const char* extension) {
   return !path.empty() && file_extension(path) != extension;
@@ -56,6 +62,23 @@ Mesh read_input(const std::string& path, double mm_per_unit, const CompareOption
   }
   report(progress, stage, 1.0);
   return mesh;
+}
+
+// A CAD reference with its faces (core/cad_faces.h): the tessellation the deviations are first measured to, and the
+// exact faces they are then measured to. `mm_per_unit` does not apply (the file says its unit; a warning if given).
+CadFaces read_cad_reference(const std::string& path, double mm_per_unit, const CompareOptions& options,
+                            CompareResult& result) {
+  report(options.progress, "read reference", 0.0);
+  CadReport cad_report;
+  std::vector<std::string> warnings;
+  CadFaces cad = read_cad_faces(path, options.cad, &cad_report, &warnings);
+  result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+  ReadReport read;
+  read.cad = cad_report;
+  detail::keep_cad_report(read, result.cad_inputs);
+  detail::cad_keeps_its_units(read, mm_per_unit, result.warnings);
+  report(options.progress, "read reference", 1.0);
+  return cad;
 }
 
 // Doubts worth a line on stderr: sizes a thousand times apart (files in different units), or a scan that lies
@@ -123,7 +146,13 @@ CompareResult run_compare(const CompareOptions& options) {
     result.T_ref_scan.translation() *= options.reference_mm_per_unit;
     scan = transformed(scan, result.T_ref_scan);
   }
-  Mesh reference = read_input(options.reference_path, options.reference_mm_per_unit, options, "read reference", result);
+  // A CAD reference is measured to its exact faces (unless --flat-facets asks for the tessellation as it is).
+  const bool exact = is_cad_file(options.reference_path) && !options.flat_facets;
+  CadFaces cad;
+  if (exact) cad = read_cad_reference(options.reference_path, options.reference_mm_per_unit, options, result);
+  Mesh reference = exact ? cad.mesh
+                         : read_input(options.reference_path, options.reference_mm_per_unit, options,
+                                      "read reference", result);
   result.scan_points = scan.vertices.size();
   result.reference_points = reference.vertices.size();
   result.reference_faces = reference.faces.size();
@@ -133,6 +162,13 @@ CompareResult run_compare(const CompareOptions& options) {
   deviation.smooth_surface = !options.flat_facets;
   deviation.progress = options.progress;
   result.deviation = compute_deviation(scan.vertices, reference, deviation);
+  if (exact) {
+    // The tessellation lies within its deflection of the faces, its smooth surface about as close: a point whose two
+    // distances differ by more lies beyond its face's trim and keeps the tessellation's.
+    result.exact_points = to_exact_cad_faces(scan.vertices, cad, kExactFaceBoundDeflections *
+                                                                     result.cad_inputs.back().deflection_mm,
+                                             result.deviation);
+  }
   DeviationStatisticsOptions statistics;
   statistics.tolerance_mm = options.tolerance_mm;
   result.statistics = deviation_statistics(result.deviation.deviation_mm, statistics);

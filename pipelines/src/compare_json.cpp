@@ -22,7 +22,11 @@ nlohmann::json compare_json(const CompareOptions& options, const CompareResult& 
                       {"matched", r.deviation.matched},
                       {"reference_points", r.reference_points},
                       {"reference_faces", r.reference_faces},
-                      {"surface", r.reference_faces == 0 ? "points" : options.flat_facets ? "flat facets" : "smooth"},
+                      {"surface", r.reference_faces == 0 ? "points"
+                                  : options.flat_facets  ? "flat facets"
+                                  : r.cad_inputs.empty() ? "smooth"
+                                                         : "exact CAD faces"},
+                      {"exact_points", r.exact_points},
                       {"mean_mm", s.mean_mm},
                       {"std_mm", s.std_mm},
                       {"rms_mm", s.rms_mm},

@@ -122,6 +122,39 @@ TEST(CadSurface, ExactPointsOnAFilletedBlockReadZero) {
   EXPECT_GT(flat.fillet_mm, 0.1);  // the chords' error the smooth surface removes
 }
 
+// `conform compare` against the STEP measures to the exact faces: the same exact points read 0 to rounding (1e-6 mm),
+// flat faces, fillets and chamfer alike, where the tessellation's smooth surface reads up to the deflection; with
+// --flat-facets the chords' error is back (above 1e-3 mm on the fillets).
+TEST(CadSurface, CompareMeasuresToTheExactFaces) {
+  test::TempDir dir;
+  const TopoDS_Shape block = test::filleted_block();
+  test::write_cad(block, dir.file("block.step"), CadFormat::kStep, "MM");
+  const test::SurfaceSample exact = test::sample_surface(block, 20000, 0.0, 11);
+  Mesh scan;
+  scan.vertices = exact.points;
+  WriteOptions write;
+  write.double_precision = true;
+  write_mesh(dir.file("scan.ply"), scan, write);
+  double worst[2] = {0.0, 0.0};
+  for (const bool flat : {false, true}) {
+    std::vector<std::string> args = {"compare", "--scan", dir.file("scan.ply"), "--reference", dir.file("block.step"),
+                                     "--out-deviation", dir.file(flat ? "flat.ply" : "exact.ply"), "--json"};
+    if (flat) args.push_back("--flat-facets");
+    const test::RunResult r = test::run(CONFORM_EXE, args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["surface"], flat ? "flat facets" : "exact CAD faces");
+    if (!flat) {
+      EXPECT_GT(j["exact_points"].get<double>(), 0.99 * static_cast<double>(exact.points.size()));
+    }
+    worst[flat ? 1 : 0] = std::max(std::abs(j["min_mm"].get<double>()), std::abs(j["max_mm"].get<double>()));
+  }
+  std::printf("exact points against the STEP: within %.2e mm at the exact faces, %.4f mm at the flat facets\n",
+              worst[0], worst[1]);
+  EXPECT_LT(worst[0], 1e-6);
+  EXPECT_GT(worst[1], 1e-3);
+}
+
 // A scan (0.02 mm noise) of the block placed 17 deg and 48 mm away from it: `--init fpfh` against the STEP finds the
 // pose to 0.005 deg and 0.01 mm at the part (it found 0-1 % of the scan near the tessellation's rims before).
 TEST(CadSurface, AStepPartFarFromItsScanCoarseAligns) {

@@ -44,7 +44,8 @@ struct CompareOptions {
   std::optional<double> tolerance_mm;  // the band +-t for the in/above/below shares; none by default
   double max_distance_mm = std::numeric_limits<double>::infinity();  // farther scan points are unmatched (NaN)
   // True: distances to the reference's flat triangles as they are; false: to the smooth surface its vertices and
-  // normals describe (DeviationOptions::smooth_surface), free of the facets' chord error on curved surfaces.
+  // normals describe (DeviationOptions::smooth_surface), free of the facets' chord error on curved surfaces, and
+  // for a CAD reference to its exact analytic faces where a point lies over one.
   bool flat_facets = false;
 
   std::string out_deviation_path;  // .ply; empty: not written
@@ -66,6 +67,9 @@ struct CompareResult {
   std::size_t reference_faces = 0;                               // 0: the reference is a cloud, the deviations unsigned
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // as applied, translation in mm
   DeviationResult deviation;                                     // per scan point, in the scan's order
+  // Against a CAD reference (without flat_facets): the points measured to an exact analytic face (plane, cylinder,
+  // cone, sphere, torus; evaluation/cad_deviation.h); the others to the tessellation's smooth surface.
+  std::size_t exact_points = 0;
   DeviationStatistics statistics;
   std::vector<std::string> warnings;  // the readers' (ignored properties, ...) and doubts about units or placement
   std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
