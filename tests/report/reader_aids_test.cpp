@@ -15,49 +15,15 @@
 
 #include "conform/pipelines/deviation_view.h"
 #include "conform/report/html.h"
+#include "page_data.h"
 
 namespace conform::html {
 namespace {
 
-std::string decode_base64(const std::string& text) {
-  std::string out;
-  unsigned buffer = 0;
-  int bits = 0;
-  for (char c : text) {
-    int v = -1;
-    if (c >= 'A' && c <= 'Z') v = c - 'A';
-    if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-    if (c >= '0' && c <= '9') v = c - '0' + 52;
-    if (c == '+') v = 62;
-    if (c == '/') v = 63;
-    if (v < 0) continue;
-    buffer = (buffer << 6) | static_cast<unsigned>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out += static_cast<char>((buffer >> bits) & 0xffu);
-    }
-  }
-  return out;
-}
+using test::decode_base64;
+using test::floats_of;
 
-std::vector<float> floats_of(const std::string& bytes) {
-  std::vector<float> out(bytes.size() / 4);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    std::uint32_t bits = 0;
-    for (int b = 3; b >= 0; --b) bits = bits << 8 | static_cast<unsigned char>(bytes[4 * i + b]);
-    std::memcpy(&out[i], &bits, 4);
-  }
-  return out;
-}
-
-nlohmann::json scene_of(const std::string& html) {
-  const std::string open = "<script type=\"application/json\" id=\"conform-scene\">";
-  const std::size_t start = html.find(open);
-  if (start == std::string::npos) return nullptr;
-  const std::size_t end = html.find("</script>", start);
-  return nlohmann::json::parse(html.substr(start + open.size(), end - start - open.size()));
-}
+nlohmann::json scene_of(const std::string& html) { return test::embedded_json(html, "conform-scene"); }
 
 // Every number of attribute `name` in the elements of `html` that match `element` (e.g. "<text class=\"label\"").
 std::vector<double> attribute_values(const std::string& html, const std::string& element, const std::string& name) {
