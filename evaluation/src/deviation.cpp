@@ -119,9 +119,11 @@ DeviationResult compute_deviation(const std::vector<Eigen::Vector3d>& scan, cons
   result.kind = DeviationKind::kSignedToSurface;
   result.deviation_mm.assign(scan.size(), kNaN);
   result.closest.assign(scan.size(), Eigen::Vector3d::Constant(kNaN));
+  result.triangle.assign(scan.size(), -1);
   for_each_point(scan.size(), options.progress, [&](std::size_t i) {
     const SurfacePoint s = reference.closest(scan[i], options.max_distance_mm);
     if (!s.found()) return;
+    result.triangle[i] = s.face;
     const PhongPoint lifted = smooth != nullptr && options.smooth_surface ? smooth->lift(s) : PhongPoint{};
     if (lifted.lifted) {
       // On the smooth surface the side is the one its interpolated normal points to: a point between a facet and the

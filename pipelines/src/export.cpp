@@ -29,12 +29,8 @@ ToolPath read_paths(const ExportJobOptions& options, ExportJobResult& result) {
     ToolFrameFigures figures;
     ToolPath path = tool_path_from_csv(read_csv(file), options.frames, &figures);
     add_figures(figures, all.frames(), result.figures);
+    if (result.files.empty() || result.files.back().job != path.job) all.job += (all.job.empty() ? "" : "+") + path.job;
     result.files.push_back({file, path.job, path.segments.size(), path.frames()});
-    if (all.job.empty()) {
-      all.job = path.job;
-    } else if (result.files[result.files.size() - 2].job != path.job) {
-      all.job += "+" + path.job;
-    }
     for (ToolSegment& segment : path.segments) all.segments.push_back(std::move(segment));
   }
   return all;

@@ -45,13 +45,14 @@ inline std::vector<float> floats_of(const std::string& bytes) {
   return out;
 }
 
-// The text of <script type="application/json" id="ID"> parsed, or null when the page has none.
+// The text of <script type="application/json" id="ID"> parsed (a discarded value when it is not JSON), or null when
+// the page has none.
 inline nlohmann::json embedded_json(const std::string& html, const std::string& id) {
   const std::string open = "<script type=\"application/json\" id=\"" + id + "\">";
   const std::size_t start = html.find(open);
   if (start == std::string::npos) return nullptr;
   const std::size_t end = html.find("</script>", start);
-  return nlohmann::json::parse(html.substr(start + open.size(), end - start - open.size()));
+  return nlohmann::json::parse(html.substr(start + open.size(), end - start - open.size()), nullptr, false);
 }
 
 }  // namespace conform::test

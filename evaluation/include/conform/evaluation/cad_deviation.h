@@ -18,8 +18,9 @@
 
 namespace conform {
 
-// Replaces, in `deviation` (compute_deviation of `scan` against cad.mesh, signed), the deviation and closest point of
-// each matched point whose closest triangle lies on an analytic face by the signed distance to that face's surface
+// Replaces, in `deviation` (compute_deviation of `scan` against cad.mesh, signed; its `triangle` says which face each
+// point's closest triangle belongs to), the deviation and closest point of each matched point whose closest triangle
+// lies on an analytic face by the signed distance to that face's surface
 // and the foot of the perpendicular on it, when the two distances differ by at most `bound_mm` (the point lies over
 // the face: the tessellation is that close to it; beyond the face's trim the untrimmed surface would differ more and
 // the tessellation's figure is kept). Points on other faces (B-splines, ...) keep the tessellation's. Returns how

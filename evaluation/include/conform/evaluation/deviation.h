@@ -51,6 +51,9 @@ struct DeviationResult {
   // Where on the reference each point's deviation was measured: its closest surface point (or nearest reference
   // point); unset (NaN) for unmatched points.
   std::vector<Eigen::Vector3d> closest;
+  // Against a mesh: the triangle each point's closest surface point lies on (the facet under the smooth surface's
+  // point), -1 for unmatched points; empty against a cloud.
+  std::vector<int> triangle;
   // For a reader of the result: what the numbers mean when that is not the default (e.g. a cloud reference gives
   // unsigned distances to points, which overestimate the distance to the surface by up to the point spacing).
   std::string note;
