@@ -1,4 +1,4 @@
-// `conform align`: registers a scan to its reference (pipelines/align.h) and reports T_ref_scan, convergence, the fit
+// `conform align`: registers a scan to its reference (pipelines/align/align.h) and reports T_ref_scan, convergence, the fit
 // figures, the pose's predicted standard deviations, what the scan does not constrain and whether to trust the pose.
 // Exit code 1 when ICP did not converge or the pose is not to be trusted (verdict "no").
 
@@ -11,9 +11,9 @@
 #include "input_units.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/align.h"
-#include "conform/pipelines/align_json.h"
-#include "conform/pipelines/align_report.h"
+#include "conform/pipelines/align/align.h"
+#include "conform/pipelines/align/align_json.h"
+#include "conform/pipelines/align/align_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

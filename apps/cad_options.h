@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "conform/core/cad.h"
-#include "conform/pipelines/cad_json.h"
+#include "conform/pipelines/common/cad_json.h"
 
 namespace conform::app {
 

@@ -1,4 +1,4 @@
-// `conform compare`: the deviation of a scan from its reference (pipelines/compare.h): statistics as text or JSON,
+// `conform compare`: the deviation of a scan from its reference (pipelines/compare/compare.h): statistics as text or JSON,
 // optionally the deviation map (.ply) and the histogram (.png).
 
 #include <cstdio>
@@ -9,11 +9,11 @@
 #include "command.h"
 #include "input_units.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/compare.h"
-#include "conform/pipelines/compare_json.h"
-#include "conform/pipelines/compare_report.h"
-#include "conform/pipelines/deviation_colours.h"
-#include "conform/pipelines/deviation_histogram.h"
+#include "conform/pipelines/compare/compare.h"
+#include "conform/pipelines/compare/compare_json.h"
+#include "conform/pipelines/compare/compare_report.h"
+#include "conform/pipelines/common/deviation_colours.h"
+#include "conform/pipelines/common/deviation_histogram.h"
 #include "report_option.h"
 #include "terminal.h"
 

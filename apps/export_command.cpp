@@ -1,5 +1,5 @@
 // `conform export`: a job's path CSV as a robot or CNC program, with full tool frames (docs/export.md;
-// toolpath/job_paths.h, tool_frames.h, robot_program.h).
+// robot/job_paths.h, tool_frames.h, robot_program.h).
 
 #include <cmath>
 #include <cstdio>
@@ -10,8 +10,8 @@
 #include "command.h"
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/export.h"
-#include "conform/pipelines/export_json.h"
+#include "conform/pipelines/export/export.h"
+#include "conform/pipelines/export/export_json.h"
 #include "number_list.h"
 #include "terminal.h"
 

@@ -1,5 +1,5 @@
 // `conform fit-cylinder --input FILE`: the axis, radius, inliers and residual figures of a scanned tube
-// (pipelines/fit_cylinder.h). Exit 1 when the data do not define a cylinder (a plane, a sphere, too few inliers).
+// (pipelines/fit_cylinder/fit_cylinder.h). Exit 1 when the data do not define a cylinder (a plane, a sphere, too few inliers).
 
 #include <cmath>
 #include <cstdint>
@@ -11,9 +11,9 @@
 #include "command.h"
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/fit_cylinder.h"
-#include "conform/pipelines/fit_cylinder_json.h"
-#include "conform/pipelines/fit_cylinder_report.h"
+#include "conform/pipelines/fit_cylinder/fit_cylinder.h"
+#include "conform/pipelines/fit_cylinder/fit_cylinder_json.h"
+#include "conform/pipelines/fit_cylinder/fit_cylinder_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

@@ -1,5 +1,5 @@
 // `conform generate eroded`: a synthetic eroded turbine-blade surface with craters, as grid files with the reference
-// grid and the ground-truth rims beside it (pipelines/generate_eroded.h).
+// grid and the ground-truth rims beside it (pipelines/generate/generate_eroded.h).
 
 #include <algorithm>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "command.h"
 #include "number_list.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/generate_eroded_json.h"
+#include "conform/pipelines/generate/generate_eroded_json.h"
 #include "terminal.h"
 
 namespace conform::app {

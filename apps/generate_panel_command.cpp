@@ -1,6 +1,6 @@
 // `conform generate plate` and `conform generate nosecone`: a deformed composite panel with an opening, its scan,
 // its nominal contour, surface and deburring trajectory, and the deformed trajectory as ground truth
-// (pipelines/generate_panel.h). One file for both: they share every option but the shape's own.
+// (pipelines/generate/generate_panel.h). One file for both: they share every option but the shape's own.
 
 #include <cstdint>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "command.h"
-#include "conform/pipelines/generate_panel_json.h"
+#include "conform/pipelines/generate/generate_panel_json.h"
 #include "terminal.h"
 
 namespace conform::app {

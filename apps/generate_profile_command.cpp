@@ -7,7 +7,7 @@
 
 #include "command.h"
 #include "number_list.h"
-#include "conform/pipelines/generate_profile_json.h"
+#include "conform/pipelines/generate/generate_profile_json.h"
 #include "terminal.h"
 
 namespace conform::app {

@@ -1,6 +1,6 @@
 // `conform generate tube`: a synthetic tube scan with deformations and scanner effects, and its ground truth
-// (pipelines/generate_tube.h). Parses the flags into a GenerateTubeRequest
-// (pipelines/generate_tube_json.h, which maps degrees to the API's radians), prints what was made.
+// (pipelines/generate/generate_tube.h). Parses the flags into a GenerateTubeRequest
+// (pipelines/generate/generate_tube_json.h, which maps degrees to the API's radians), prints what was made.
 
 #include <cmath>
 #include <cstdint>
@@ -10,8 +10,8 @@
 
 #include "command.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/generate_tube.h"
-#include "conform/pipelines/generate_tube_json.h"
+#include "conform/pipelines/generate/generate_tube.h"
+#include "conform/pipelines/generate/generate_tube_json.h"
 #include "number_list.h"
 #include "terminal.h"
 

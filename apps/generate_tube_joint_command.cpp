@@ -1,5 +1,5 @@
 // `conform generate tube-joint`: a posed leg + stub scan pair with the ground-truth intersection curve
-// (pipelines/generate_tube_joint.h), the input `conform tube-joint` expects.
+// (pipelines/generate/generate_tube_joint.h), the input `conform tube-joint` expects.
 
 #include <array>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "command.h"
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/generate_tube_joint_json.h"
+#include "conform/pipelines/generate/generate_tube_joint_json.h"
 #include "number_list.h"
 #include "terminal.h"
 

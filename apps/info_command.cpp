@@ -9,7 +9,7 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/info.h"
+#include "conform/pipelines/info/info.h"
 #include "json_values.h"
 #include "terminal.h"
 

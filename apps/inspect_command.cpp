@@ -1,4 +1,4 @@
-// `conform inspect`: a scan inspected face by face against its CAD (pipelines/inspect.h): per face the deviation,
+// `conform inspect`: a scan inspected face by face against its CAD (pipelines/inspect/inspect.h): per face the deviation,
 // the form and the fitted feature against its nominal, as text or JSON, and optionally a CSV of the faces.
 
 #include <cmath>
@@ -10,9 +10,9 @@
 #include "cad_options.h"
 #include "command.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/inspect.h"
-#include "conform/pipelines/inspect_json.h"
-#include "conform/pipelines/inspect_report.h"
+#include "conform/pipelines/inspect/inspect.h"
+#include "conform/pipelines/inspect/inspect_json.h"
+#include "conform/pipelines/inspect/inspect_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

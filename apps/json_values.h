@@ -1,7 +1,7 @@
 #pragma once
-// Eigen values as JSON: the jobs' JSON helpers (pipelines/json_values.h) under the names the commands use.
+// Eigen values as JSON: the jobs' JSON helpers (pipelines/common/json_values.h) under the names the commands use.
 
-#include "conform/pipelines/json_values.h"
+#include "conform/pipelines/common/json_values.h"
 
 namespace conform::app {
 

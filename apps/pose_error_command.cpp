@@ -1,5 +1,5 @@
 // `conform pose-error --transform A --transform B`: the rotation angle and translation between two rigid transforms
-// (pipelines/pose_error.h), for accuracy-evaluation scripts.
+// (pipelines/pose_error/pose_error.h), for accuracy-evaluation scripts.
 
 #include <cmath>
 #include <cstdio>
@@ -9,8 +9,8 @@
 #include "command.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/pose_error.h"
-#include "conform/pipelines/pose_error_json.h"
+#include "conform/pipelines/pose_error/pose_error.h"
+#include "conform/pipelines/pose_error/pose_error_json.h"
 #include "terminal.h"
 
 namespace conform::app {

@@ -8,9 +8,9 @@
 
 #include "command.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/profile.h"
-#include "conform/pipelines/profile_json.h"
-#include "conform/pipelines/profile_report.h"
+#include "conform/pipelines/profile/profile.h"
+#include "conform/pipelines/profile/profile_json.h"
+#include "conform/pipelines/profile/profile_report.h"
 #include "number_list.h"
 #include "report_option.h"
 #include "terminal.h"

@@ -7,9 +7,9 @@
 #include "command.h"
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/saddle.h"
-#include "conform/pipelines/saddle_json.h"
-#include "conform/pipelines/saddle_report.h"
+#include "conform/pipelines/saddle/saddle.h"
+#include "conform/pipelines/saddle/saddle_json.h"
+#include "conform/pipelines/saddle/saddle_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

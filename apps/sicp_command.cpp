@@ -1,5 +1,5 @@
 // `conform sicp`: deburring on a deformed part. Maps the nominal trajectory onto the scanned part by
-// Subdivision-ICP, one rigid transform or the projection model (pipelines/sicp.h) and writes it with the same rows.
+// Subdivision-ICP, one rigid transform or the projection model (pipelines/sicp/sicp.h) and writes it with the same rows.
 // Exit code 1 when the registration did not converge or the path failed its checks (nothing is written then).
 
 #include <cstdio>
@@ -8,9 +8,9 @@
 #include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/sicp.h"
-#include "conform/pipelines/sicp_json.h"
-#include "conform/pipelines/sicp_report.h"
+#include "conform/pipelines/sicp/sicp.h"
+#include "conform/pipelines/sicp/sicp_json.h"
+#include "conform/pipelines/sicp/sicp_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

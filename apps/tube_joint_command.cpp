@@ -1,5 +1,5 @@
 // `conform tube-joint`: cutting and welding paths for a tubular joint from a leg scan (outer surface, leg frame) and
-// a stub scan (inner surface, stub frame) — Lind & Ystgaard (2020), pipelines/tube_joint.h.
+// a stub scan (inner surface, stub frame) — Lind & Ystgaard (2020), pipelines/tube_joint/tube_joint.h.
 
 #include <cstdio>
 #include <string>
@@ -8,9 +8,9 @@
 #include "cad_options.h"
 #include "command.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/tube_joint.h"
-#include "conform/pipelines/tube_joint_json.h"
-#include "conform/pipelines/tube_joint_report.h"
+#include "conform/pipelines/tube_joint/tube_joint.h"
+#include "conform/pipelines/tube_joint/tube_joint_json.h"
+#include "conform/pipelines/tube_joint/tube_joint_report.h"
 #include "number_list.h"
 #include "report_option.h"
 #include "terminal.h"

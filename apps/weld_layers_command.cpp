@@ -1,5 +1,5 @@
 // `conform weld-layers`: the boundary of the eroded area and parallel weld paths, layer by layer, to rebuild an
-// eroded surface (Simas, Dias & Guenther; pipelines/weld_layers.h).
+// eroded surface (Simas, Dias & Guenther; pipelines/weld_layers/weld_layers.h).
 
 #include <cmath>
 #include <cstdio>
@@ -7,9 +7,9 @@
 
 #include "command.h"
 #include "conform/core/error.h"
-#include "conform/pipelines/weld_layers.h"
-#include "conform/pipelines/weld_layers_json.h"
-#include "conform/pipelines/weld_layers_report.h"
+#include "conform/pipelines/weld_layers/weld_layers.h"
+#include "conform/pipelines/weld_layers/weld_layers_json.h"
+#include "conform/pipelines/weld_layers/weld_layers_report.h"
 #include "report_option.h"
 #include "terminal.h"
 

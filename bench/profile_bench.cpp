@@ -19,7 +19,7 @@
 #include "conform/compensation/profile_compensation.h"
 #include "conform/core/csv.h"
 #include "conform/datasets/profile.h"
-#include "conform/pipelines/profile.h"
+#include "conform/pipelines/profile/profile.h"
 
 namespace {
 

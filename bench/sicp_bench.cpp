@@ -16,8 +16,8 @@
 #include "bench_timer.h"
 #include "conform/compensation/trajectory_error.h"
 #include "conform/datasets/panel.h"
-#include "conform/pipelines/generate_panel.h"
-#include "conform/pipelines/sicp.h"
+#include "conform/pipelines/generate/generate_panel.h"
+#include "conform/pipelines/sicp/sicp.h"
 
 namespace {
 

@@ -15,10 +15,10 @@
 #include "bench_timer.h"
 #include "conform/core/constants.h"
 #include "conform/datasets/tube_surface.h"
-#include "conform/pipelines/generate_tube_joint.h"
-#include "conform/pipelines/tube_joint.h"
-#include "conform/toolpath/intersection_graph.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/pipelines/generate/generate_tube_joint.h"
+#include "conform/pipelines/tube_joint/tube_joint.h"
+#include "conform/toolpath/intersection/intersection_graph.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 
 using conform::kPi;
 

@@ -1,5 +1,5 @@
 // The damaged area's boundary on the generated eroded blade (120 x 80 mm, 41 x 61 grid, craters of 15 mm / 2 mm and
-// 8 mm / 1 mm, noise 0.01 mm): recursive subdivision of patch pairs (toolpath/surface_intersection.h) against a peer,
+// 8 mm / 1 mm, noise 0.01 mm): recursive subdivision of patch pairs (toolpath/intersection/surface_intersection.h) against a peer,
 // the sampled depth field (depth of the eroded surface below the offset reference on a parameter grid as fine as the
 // tolerance, rim points by linear interpolation where it changes sign: marching squares without the squares).
 // Prints time and the rim's worst distance from the analytic rho_t for both, then the whole weld-layers plan.
@@ -12,8 +12,8 @@
 #include "bench_timer.h"
 #include "conform/datasets/eroded.h"
 #include "conform/fitting/bezier_network.h"
-#include "conform/toolpath/surface_intersection.h"
-#include "conform/toolpath/weld_layers.h"
+#include "conform/toolpath/intersection/surface_intersection.h"
+#include "conform/toolpath/weld/weld_layers.h"
 
 using namespace conform;
 

@@ -11,8 +11,8 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "conform/pipelines/generate_panel_json.h"
-#include "conform/pipelines/generate_tube_joint_json.h"
+#include "conform/pipelines/generate/generate_panel_json.h"
+#include "conform/pipelines/generate/generate_tube_joint_json.h"
 
 namespace conform::python {
 namespace {

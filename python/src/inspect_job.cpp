@@ -10,9 +10,9 @@
 #include "bindings.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
-#include "conform/pipelines/inspect.h"
-#include "conform/pipelines/inspect_json.h"
-#include "conform/pipelines/inspect_report.h"
+#include "conform/pipelines/inspect/inspect.h"
+#include "conform/pipelines/inspect/inspect_json.h"
+#include "conform/pipelines/inspect/inspect_report.h"
 #include "job_report.h"
 
 namespace conform::python {

@@ -193,7 +193,7 @@ TEST(SicpChecks, ScanNoiseFromPlaneFits) {
     scan.emplace_back(x, 0.05 * random.normal(), x * x / 5000.0 - random.uniform(0.0, 4.0));
   }
   const KdTree tree(scan);
-  // sicp's settings (pipelines/src/sicp_compensate.cpp): 20 neighbours at 400 points.
+  // sicp's settings (pipelines/src/sicp/sicp_compensate.cpp): 20 neighbours at 400 points.
   EXPECT_NEAR(estimate_surface_noise(scan, tree, SurfaceNoiseOptions{20, 400}), 0.05, 0.005);
   const std::vector<Eigen::Vector3d> two{{0, 0, 0}, {1, 0, 0}};
   EXPECT_EQ(estimate_surface_noise(two, KdTree(two), SurfaceNoiseOptions{20, 400}), 0.0);

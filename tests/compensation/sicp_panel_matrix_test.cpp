@@ -17,8 +17,8 @@
 #include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/datasets/panel.h"
-#include "conform/pipelines/generate_panel.h"
-#include "conform/pipelines/sicp.h"
+#include "conform/pipelines/generate/generate_panel.h"
+#include "conform/pipelines/sicp/sicp.h"
 #include "sicp_test_panels.h"
 #include "temp_dir.h"
 

@@ -12,7 +12,7 @@
 
 #include "conform/compensation/trajectory_error.h"
 #include "conform/datasets/panel.h"
-#include "conform/pipelines/sicp.h"
+#include "conform/pipelines/sicp/sicp.h"
 
 namespace conform::test {
 

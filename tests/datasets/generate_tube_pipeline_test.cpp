@@ -1,4 +1,4 @@
-#include "conform/pipelines/generate_tube.h"
+#include "conform/pipelines/generate/generate_tube.h"
 
 #include <filesystem>
 #include <string>

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "conform/core/error.h"
-#include "conform/pipelines/generate_profile.h"
-#include "conform/pipelines/profile.h"
+#include "conform/pipelines/generate/generate_profile.h"
+#include "conform/pipelines/profile/profile.h"
 #include "temp_dir.h"
 
 namespace conform {

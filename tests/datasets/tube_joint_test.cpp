@@ -10,7 +10,7 @@
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/datasets/tube_surface.h"
-#include "conform/pipelines/generate_tube_joint.h"
+#include "conform/pipelines/generate/generate_tube_joint.h"
 
 namespace conform {
 namespace {

@@ -1,6 +1,6 @@
 // libFuzzer harness: the features file of `conform profile`, CSV form (tests/fuzz/README.md).
 #include "conform/core/error.h"
-#include "conform/pipelines/profile.h"
+#include "conform/pipelines/profile/profile.h"
 #include "fuzz_input.h"
 
 CONFORM_FUZZ_READER(".csv", conform::read_profile_features(path))

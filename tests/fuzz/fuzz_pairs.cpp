@@ -1,5 +1,5 @@
 // libFuzzer harness: the point-pairs file of `conform align --pairs` (tests/fuzz/README.md).
-#include "align_inputs.h"
+#include "align/align_inputs.h"
 #include "conform/core/error.h"
 #include "fuzz_input.h"
 

@@ -1,4 +1,4 @@
-// The inverse-consistency check of a fit against a cloud reference (pipelines/src/align_consistency.h): the
+// The inverse-consistency check of a fit against a cloud reference (pipelines/src/align/align_consistency.h): the
 // reference fitted to the scan lands where the forward fit did when that fit is right, and it measures how far a
 // forward pose is off when it is not; the difference enters the covariance as a bias.
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "align_consistency.h"
+#include "align/align_consistency.h"
 #include "conform/core/mesh.h"
 #include "conform/core/random.h"
 #include "conform/registration/icp_reference.h"

@@ -1,13 +1,13 @@
 // The profile report's figures on generated profiles (datasets/profile.h, seeded): the mapped outlines are the
 // Result's, the nominal ones lie on the straight profile, and a feature's displacement is the generator's bow there.
 
-#include "conform/pipelines/profile_report.h"
+#include "conform/pipelines/profile/profile_report.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "conform/pipelines/generate_profile.h"
+#include "conform/pipelines/generate/generate_profile.h"
 #include "report_page_checks.h"
 #include "temp_dir.h"
 

@@ -1,7 +1,7 @@
 // `conform profile` as the CLI and Python take it: the request's defaults are the job's, and each conflicting or
 // unknown choice is refused naming its flag.
 
-#include "conform/pipelines/profile_json.h"
+#include "conform/pipelines/profile/profile_json.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 // The thinning the job reports use for glyphs and long lines: every k-th index and the last, the same every time.
 
-#include "conform/pipelines/report_figures.h"
+#include "conform/pipelines/common/report_figures.h"
 
 #include <gtest/gtest.h>
 

@@ -2,15 +2,15 @@
 // closed form along it, the torch at the pose angle from the pipe axis; a long constant-speed path thinned to the
 // stated limit with its ends kept.
 
-#include "conform/pipelines/saddle_report.h"
+#include "conform/pipelines/saddle/saddle_report.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "conform/core/constants.h"
-#include "conform/pipelines/saddle_json.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/pipelines/saddle/saddle_json.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 #include "report_page_checks.h"
 
 namespace conform {

@@ -2,12 +2,12 @@
 // Result's trajectory, the nominal path and the contour are the files read, the glyphs are compensated rows with
 // their tool normals, and the per-row and per-segment series are the checks' figures.
 
-#include "conform/pipelines/sicp_report.h"
+#include "conform/pipelines/sicp/sicp_report.h"
 
 #include <gtest/gtest.h>
 
-#include "conform/pipelines/generate_panel.h"
-#include "conform/pipelines/sicp_json.h"
+#include "conform/pipelines/generate/generate_panel.h"
+#include "conform/pipelines/sicp/sicp_json.h"
 #include "report_page_checks.h"
 #include "temp_dir.h"
 

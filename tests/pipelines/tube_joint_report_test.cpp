@@ -3,14 +3,14 @@
 // runs from the tool's position to its seam point over the standoff (Eq. 9 and 11), and the angle plots are the
 // Result's dihedral and groove angles.
 
-#include "conform/pipelines/tube_joint_report.h"
+#include "conform/pipelines/tube_joint/tube_joint_report.h"
 
 #include <gtest/gtest.h>
 
 #include "conform/core/constants.h"
-#include "conform/pipelines/generate_tube_joint.h"
-#include "conform/pipelines/generate_tube_joint_json.h"
-#include "conform/pipelines/tube_joint_json.h"
+#include "conform/pipelines/generate/generate_tube_joint.h"
+#include "conform/pipelines/generate/generate_tube_joint_json.h"
+#include "conform/pipelines/tube_joint/tube_joint_json.h"
 #include "report_page_checks.h"
 #include "temp_dir.h"
 

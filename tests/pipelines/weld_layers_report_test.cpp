@@ -2,13 +2,13 @@
 // radius 10 mm and depth 1.5 mm, seeded): the surface is the eroded grid with its depth, thinned to a stated node
 // limit; the rims and each layer's paths are the Result's.
 
-#include "conform/pipelines/weld_layers_report.h"
+#include "conform/pipelines/weld_layers/weld_layers_report.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "conform/pipelines/generate_eroded.h"
+#include "conform/pipelines/generate/generate_eroded.h"
 #include "report_page_checks.h"
 #include "temp_dir.h"
 

@@ -31,7 +31,7 @@
 #include "conform/datasets/ribbed_boss_plate.h"
 #include "conform/datasets/ribbed_plate.h"
 #include "conform/datasets/workpiece.h"
-#include "conform/pipelines/align.h"
+#include "conform/pipelines/align/align.h"
 #include "registration_test_util.h"
 #include "temp_dir.h"
 
@@ -180,7 +180,7 @@ Trial workpiece_trial(int seed, const Eigen::Isometry3d& T_ref_part, double nois
 
 // The workpiece cases run at the defaults: the accuracy asked of the pose is sqrt(3) times the scan's or the fit's
 // noise, and against these noisy golden-sample clouds the predicted std carries the fit's bias measured by the
-// inverse-consistency check (pipelines/src/align_consistency.h). Without that bias, 19 of the 60 noisy-case seeds
+// inverse-consistency check (pipelines/src/align/align_consistency.h). Without that bias, 19 of the 60 noisy-case seeds
 // over streams 0-2 ended wrong with exit 0 at the defaults; the errors reached 6-17 predicted std. `honest`: seeds
 // whose error is within 3 std on every axis.
 

@@ -1,7 +1,7 @@
-// The align job (pipelines/align.h) end to end on files: the real small_gicp pair in metres, generated parts with
+// The align job (pipelines/align/align.h) end to end on files: the real small_gicp pair in metres, generated parts with
 // every init, outputs written whole and only on success, and the bad inputs the issue lists.
 
-#include "conform/pipelines/align.h"
+#include "conform/pipelines/align/align.h"
 
 #include <cstdio>
 

@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "conform/pipelines/fit_cylinder_report.h"
-#include "conform/pipelines/deviation_colours.h"
-#include "conform/pipelines/deviation_view.h"
+#include "conform/pipelines/fit_cylinder/fit_cylinder_report.h"
+#include "conform/pipelines/common/deviation_colours.h"
+#include "conform/pipelines/common/deviation_view.h"
 
 namespace conform {
 namespace {

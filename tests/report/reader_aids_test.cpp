@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "conform/pipelines/deviation_view.h"
+#include "conform/pipelines/common/deviation_view.h"
 #include "conform/report/html.h"
 #include "page_data.h"
 

@@ -1,7 +1,7 @@
 // Algorithm 1 (ordering by azimuth), Eq. (2) resampling, arc-length resampling and smoothing, on curves whose
 // answer is known in closed form; and the conditions (1h), [axis], [azimuth], [jordan].
 
-#include "conform/toolpath/azimuth_path.h"
+#include "conform/toolpath/intersection/azimuth_path.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // the registration bias (offset, tilt) measured, the damage side decided by volume (not one extreme point), every
 // crater a region (at the border too), coverage of the damage by polylines.
 
-#include "conform/toolpath/damage_map.h"
+#include "conform/toolpath/weld/damage_map.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 // Eq. (5) generalised: any table of (phi, alpha) rows, linear, quadratic or periodic-spline interpolation, with the
 // paper's conventions checked (a 360 deg row closes the table), and impossible tables rejected.
 
-#include "conform/toolpath/groove_table.h"
+#include "conform/toolpath/intersection/groove_table.h"
 
 #include <cmath>
 #include <string>

@@ -1,6 +1,6 @@
 // Welding by name, the paper's conditions (1a), (1d), (1i) and the project's [intersect], [one-curve] on hand-made segment soups: each failure names its condition.
 
-#include "conform/toolpath/intersection_graph.h"
+#include "conform/toolpath/intersection/intersection_graph.h"
 
 #include <cmath>
 

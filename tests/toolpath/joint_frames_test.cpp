@@ -1,4 +1,4 @@
-#include "conform/toolpath/joint_frames.h"
+#include "conform/toolpath/intersection/joint_frames.h"
 
 #include <cmath>
 #include <random>

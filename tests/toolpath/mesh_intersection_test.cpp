@@ -2,7 +2,7 @@
 // with edges lying on the plane's grid lines; and the same rotated (inexact) at random. The welded curve must come
 // out as one closed, simple loop every time.
 
-#include "conform/toolpath/mesh_intersection.h"
+#include "conform/toolpath/intersection/mesh_intersection.h"
 
 #include <cmath>
 #include <cstdio>
@@ -12,8 +12,8 @@
 #include <Eigen/Geometry>
 
 #include "conform/core/error.h"
-#include "conform/toolpath/azimuth_path.h"
-#include "conform/toolpath/intersection_graph.h"
+#include "conform/toolpath/intersection/azimuth_path.h"
+#include "conform/toolpath/intersection/intersection_graph.h"
 
 namespace conform {
 namespace {

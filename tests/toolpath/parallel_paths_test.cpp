@@ -1,7 +1,7 @@
 // Parallel paths (Simas, Dias & Guenther) on analytic surfaces: straight lines exactly dc apart on a plane, surface
 // distance within 2% of g (Eq. 5) on a cylinder and a sphere, every step's chord error <= delta, loops removed.
 
-#include "conform/toolpath/parallel_paths.h"
+#include "conform/toolpath/weld/parallel_paths.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The seam's closed form against independent checks: the paper's own equations, both cylinder equations evaluated
 // through the joint frames, finite differences of the curve, and normals from finite-difference gradients.
 
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 #include "saddle_test_geometry.h"
 
 #include <cmath>
@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/error.h"
-#include "conform/toolpath/joint_frames.h"
+#include "conform/toolpath/intersection/joint_frames.h"
 
 namespace conform {
 namespace {

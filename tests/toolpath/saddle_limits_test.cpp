@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "conform/toolpath/saddle.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/toolpath/saddle/saddle.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 #include "saddle_test_geometry.h"
 
 namespace conform {

@@ -1,6 +1,6 @@
 // The `conform saddle` pipeline: its CSV, written whole or not at all, and its errors.
 
-#include "conform/pipelines/saddle.h"
+#include "conform/pipelines/saddle/saddle.h"
 
 #include <sstream>
 #include <string>

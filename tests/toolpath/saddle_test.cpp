@@ -1,6 +1,6 @@
 // Interpolation of the saddle seam: the paper's Table 1, constant torch speed, and the generalised joint.
 
-#include "conform/toolpath/saddle.h"
+#include "conform/toolpath/saddle/saddle.h"
 
 #include <array>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/toolpath/joint_frames.h"
+#include "conform/toolpath/intersection/joint_frames.h"
 
 namespace conform {
 namespace {

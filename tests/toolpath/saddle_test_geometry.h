@@ -2,7 +2,7 @@
 // A saddle joint for the saddle tests: leg radius R, pipe radius r (mm), pitch (deg), offset (mm).
 
 #include "conform/core/constants.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 
 namespace conform::test {
 

@@ -1,6 +1,6 @@
 // The scan measures near the seam against generated tubes whose noise, edge length and radius are known.
 
-#include "conform/toolpath/scan_quality.h"
+#include "conform/toolpath/intersection/scan_quality.h"
 
 #include <cmath>
 

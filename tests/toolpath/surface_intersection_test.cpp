@@ -1,7 +1,7 @@
 // Intersection by recursive subdivision against analytic curves: a plane cutting a paraboloid, a sphere cap cut by
 // a plane; both give a closed circle within the subdivision tolerance.
 
-#include "conform/toolpath/surface_intersection.h"
+#include "conform/toolpath/intersection/surface_intersection.h"
 
 #include <cmath>
 

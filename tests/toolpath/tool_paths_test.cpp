@@ -1,7 +1,7 @@
 // Eq. (5) groove interpolation, Eq. (7), (9), (11) tool poses, the local quadric fit and the seam refinement, against
 // closed forms.
 
-#include "conform/toolpath/tool_paths.h"
+#include "conform/toolpath/intersection/tool_paths.h"
 
 #include <cmath>
 #include <random>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/constants.h"
-#include "conform/toolpath/local_quadric.h"
+#include "conform/toolpath/intersection/local_quadric.h"
 
 namespace conform {
 namespace {

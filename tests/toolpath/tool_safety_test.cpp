@@ -2,7 +2,7 @@
 // stub wall along -z_S (psi = 90 deg), leg surface the plane z = z0 with the leg beyond it. A weld torch at alpha_w
 // in the wall's wedge (alpha_c, psi) is inside the wall unless s_w sin(psi - alpha_w) > d_s.
 
-#include "conform/toolpath/tool_safety.h"
+#include "conform/toolpath/intersection/tool_safety.h"
 
 #include <cmath>
 

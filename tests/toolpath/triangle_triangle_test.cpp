@@ -1,7 +1,7 @@
 // Exact orientation and the perturbed triangle-triangle intersection, on the degenerate configurations rounding
 // gets wrong: points exactly coplanar far from the origin, vertices on the other triangle's plane, shared edges.
 
-#include "conform/toolpath/triangle_triangle.h"
+#include "conform/toolpath/intersection/triangle_triangle.h"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "conform/toolpath/exact_orientation.h"
+#include "conform/toolpath/intersection/exact_orientation.h"
 
 namespace conform {
 namespace {

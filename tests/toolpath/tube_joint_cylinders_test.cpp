@@ -1,4 +1,4 @@
-// Perfect cylinders, no noise: the computed path against the analytic intersection (toolpath/saddle_curve.h) for
+// Perfect cylinders, no noise: the computed path against the analytic intersection (toolpath/saddle/saddle_curve.h) for
 // pitch 90, 45, 30 deg with and without offset; normals, tangent and tool directions against closed forms.
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/core/constants.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 #include "tube_joint_fixture.h"
 
 namespace conform {

@@ -9,7 +9,7 @@
 
 #include "conform/core/constants.h"
 #include "conform/datasets/tube_surface.h"
-#include "conform/toolpath/saddle_curve.h"
+#include "conform/toolpath/saddle/saddle_curve.h"
 #include "tube_joint_fixture.h"
 
 namespace conform {

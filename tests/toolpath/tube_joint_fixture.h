@@ -5,8 +5,8 @@
 
 #include "conform/datasets/tube_grid.h"
 #include "conform/datasets/tube_joint.h"
-#include "conform/pipelines/tube_joint.h"
-#include "conform/toolpath/joint_frames.h"
+#include "conform/pipelines/tube_joint/tube_joint.h"
+#include "conform/toolpath/intersection/joint_frames.h"
 
 namespace conform::test {
 

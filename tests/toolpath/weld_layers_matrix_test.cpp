@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "conform/datasets/eroded.h"
-#include "conform/toolpath/weld_layers.h"
+#include "conform/toolpath/weld/weld_layers.h"
 
 namespace conform {
 namespace {

@@ -1,7 +1,7 @@
 // Weld layers on a generated eroded blade (datasets/eroded.h): the rim found where the crater is as deep as the
 // threshold, every point inside it, layers interleaved and stacked, figures within bounds; no damage -> not ok.
 
-#include "conform/toolpath/weld_layers.h"
+#include "conform/toolpath/weld/weld_layers.h"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@
 
 #include "conform/core/error.h"
 #include "conform/datasets/eroded.h"
-#include "conform/toolpath/parallel_paths.h"
+#include "conform/toolpath/weld/parallel_paths.h"
 
 namespace conform {
 namespace {

@@ -4,7 +4,7 @@
 // — with their deformations and scanner effects (datasets/tube.h), and the ground truth: the intersection curve of
 // the noise-free deformed surfaces, sampled densely by stub azimuth.
 //
-// Frames (toolpath/joint_frames.h; datasets does not depend on toolpath, so the caller passes T_L_S):
+// Frames (toolpath/intersection/joint_frames.h; datasets does not depend on toolpath, so the caller passes T_L_S):
 //   leg   its tube frame is L: z along the leg axis, the leg tube spans z_L in [-length/2, length/2].
 //   stub  its tube frame is S shifted: the stub spans z_S in [0, stub length] (z_S = 0 the distal end, z towards the
 //         leg), azimuth from x_S (the toe). By default the stub ends the margin beyond the curve's deepest point when

@@ -2,7 +2,7 @@
 // A smooth parametric surface r(u, v) over a rectangle of parameters, and what differential geometry needs of it:
 // the first and second fundamental forms and the normal curvature in a direction (do Carmo, Differential Geometry of
 // Curves and Surfaces, 2-2 and 3-2). The Bézier network (bezier_network.h) and the tests' analytic cylinders and
-// spheres implement it; the parallel weld paths (toolpath/parallel_paths.h) work on any of them.
+// spheres implement it; the parallel weld paths (toolpath/weld/parallel_paths.h) work on any of them.
 
 #include <Eigen/Core>
 

@@ -1,0 +1,315 @@
+#include "conform/pipelines/align/align.h"
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <future>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include <omp.h>
+
+#include "align/align_coarse_reference.h"
+#include "align/align_consistency.h"
+#include "align/align_inputs.h"
+#include "align/align_verdict.h"
+#include "conform/core/error.h"
+#include "conform/core/geometry.h"
+#include "conform/core/io.h"
+#include "conform/core/output_set.h"
+#include "conform/core/transform_io.h"
+#include "conform/registration/downsample.h"
+
+namespace conform {
+
+namespace {
+
+std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const AlignOptions& options) {
+  if (options.scan_voxel_mm > 0.0) points = voxel_downsample(points, options.scan_voxel_mm);
+  return stride_downsample(points, options.max_scan_points);
+}
+
+// reference_is_cloud: with the overlap left to the data (--overlap 0), a cloud reference (another scan: partial
+// overlap is the rule) has it estimated in every step; a mesh (the nominal part, which the scan lies on) keeps every
+// pair, as trimming even 1-2 % of a plate's worst-fitting points (its steep walls, which fix its in-plane position)
+// moved the fit 0.05-0.1 mm at 0.02 mm of noise (AlignMatrixBossPlateMesh).
+IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm,
+                        bool reference_is_cloud) {
+  IcpOptions icp;
+  icp.method = method;
+  icp.max_correspondence_distance_mm = max_distance_mm;
+  icp.estimate_overlap = options.overlap == 0.0 && reference_is_cloud;
+  icp.overlap = options.overlap > 0.0 ? options.overlap : 1.0;
+  icp.kernel = options.kernel;
+  icp.max_iterations = options.max_iterations;
+  icp.min_inlier_fraction = std::min(icp.min_inlier_fraction, icp.overlap);
+  icp.free_tolerance_mm = options.free_tolerance_mm;
+  icp.free_tolerance_rad = options.free_tolerance_deg * M_PI / 180.0;
+  icp.progress = options.progress;
+  return icp;
+}
+
+// Fractional ICP's objective at a fit (Phillips et al. 2007, Eq. (3)): its inliers' RMS over their share^lambda.
+double fractional_objective(const IcpResult& r, double lambda) {
+  if (!(r.inlier_fraction > 0.0)) return std::numeric_limits<double>::infinity();
+  return r.rms_mm / std::pow(r.inlier_fraction, lambda);
+}
+
+// Fine ICP from `start`. With the overlap estimated and a start the user gave (which may be rough): trimmed to the
+// estimated overlap, ICP keeps a right start that half the scan does not overlap, but from a rough start it can stay
+// where it began (a LiDAR pair started 0.5 m off); every pair kept, it finds the basin from a rough start, but pairs
+// beyond the overlap pull a right start away. So both: the estimated-overlap fit from the start, and from where the
+// fit with every pair converged; the lower fractional objective (one criterion for both) wins.
+IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                   const Eigen::Isometry3d& start, const IcpOptions& fine, bool rough_start) {
+  IcpResult direct = icp(scan, reference, start, fine);
+  if (!fine.estimate_overlap || !rough_start) return direct;
+  IcpOptions quiet = fine;  // the two further runs report no progress of their own
+  quiet.progress = nullptr;
+  IcpOptions every_pair = quiet;
+  every_pair.estimate_overlap = false;
+  every_pair.overlap = 1.0;
+  const IcpResult pulled = icp(scan, reference, start, every_pair);
+  IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
+  const bool via_better = via.converged && (!direct.converged || fractional_objective(via, fine.overlap_lambda) <
+                                                                     fractional_objective(direct, fine.overlap_lambda));
+  return via_better ? via : direct;
+}
+
+// Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
+void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference, const Mesh& reference_mesh,
+                    const AlignOptions& options, double max_distance_mm, AlignResult& result) {
+  switch (options.init) {
+    case AlignInit::kNone:
+      break;
+    case AlignInit::kPairs:
+      result.pairs = align_point_pairs(detail::read_point_pairs(options.pairs_path, options.scan_mm_per_unit, options.reference_mm_per_unit));
+      result.T_start = result.pairs.T_ref_scan;
+      result.start = "pairs";
+      return;
+    case AlignInit::kPca:
+    case AlignInit::kFpfh:
+      break;
+  }
+  const bool given = options.init == AlignInit::kNone;
+  CoarseOptions coarse;
+  coarse.method = given                             ? CoarseMethod::kNone
+                  : options.init == AlignInit::kPca ? CoarseMethod::kPca
+                                                    : CoarseMethod::kFpfh;
+  // A start the user gave is ranked against itself turned by the reference's candidate symmetries: a near-symmetric
+  // part placed one index off (a flange one bolt hole round) is found at the right one or called ambiguous. Not
+  // refined: unless a turned start wins, fine ICP starts from the user's own.
+  coarse.probe_given_start = given;
+  if (given) coarse.refine_iterations = 0;
+  coarse.fpfh.seed = options.seed;
+  // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
+  // The probes find the basin: every pair pulls (a start a few mm off slides home only if the part of the scan that
+  // is off the surface is not trimmed away). The estimated overlap is the fine fit's, from the winner's pose.
+  coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm, false);
+  coarse.multi_start.probe.max_iterations = 15;
+  coarse.multi_start.probe.progress = nullptr;
+  coarse.progress = options.progress;
+  // Against a mesh, features and scores over its surface at the scan's spacing, not over its vertices
+  // (align_coarse_reference.h): a CAD tessellation's vertices are only on its faces' rims.
+  const double spacing = reference_mesh.has_faces() ? detail::scan_spacing(scan) : 0.0;
+  std::optional<IcpReference> surface;
+  if (spacing > 0.0) surface.emplace(detail::coarse_reference(reference_mesh, spacing));
+  result.coarse = coarse_align(scan, surface ? *surface : reference, coarse);
+  const MultiStartResult& ranking = result.coarse.ranking;
+  // The user's start is kept unless a turned one fits better beyond doubt: when the ranking is ambiguous the data
+  // cannot tell the turns apart (a symmetric part), and where the user placed the scan decides (the verdict says so).
+  const bool kept = given && (ranking.ambiguous || ranking.best < 0 ||
+                              ranking.starts[static_cast<std::size_t>(ranking.best)].label == "identity");
+  result.T_start = kept ? Eigen::Isometry3d::Identity() : result.coarse.T_ref_scan;
+  result.start = kept ? std::string("identity") : result.coarse.winner;
+  if (given && !kept) {
+    result.warnings.push_back("the start given fits worse than '" + result.coarse.winner +
+                              "' (the reference is near-symmetric): fine ICP started there");
+  }
+  if (ranking.ambiguous) {
+    const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
+    const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
+    char shares[160];
+    std::snprintf(
+        shares, sizeof shares, "inlier share %.3f against %.3f within %.3g mm; truncated RMS %.3g against %.3g mm",
+        other.inlier_share, best.inlier_share, result.coarse.inlier_distance_mm, other.score_mm, best.score_mm);
+    result.warnings.push_back("the coarse alignment is ambiguous: start '" + other.label +
+                              "' fits almost as well as '" + best.label + "' (" + shares +
+                              ") at another pose; the part may be symmetric");
+  }
+}
+
+// The transform and the aligned scan, both or neither.
+void write_outputs(const Mesh& scan_mesh, const AlignOptions& options, AlignResult& result) {
+  if (options.out_transform_path.empty() && options.out_aligned_path.empty()) return;
+  report(options.progress, "write", 0.0);
+  OutputSet outputs;
+  if (!options.out_transform_path.empty()) write_transform(options.out_transform_path, result.icp.T_ref_scan);
+  if (!options.out_aligned_path.empty()) {
+    const Mesh aligned = transformed(scan_mesh, result.icp.T_ref_scan);
+    if (aligned.has_faces()) {
+      write_mesh(options.out_aligned_path, aligned);
+    } else {
+      write_cloud(options.out_aligned_path, to_cloud(aligned));
+    }
+  }
+  outputs.commit();
+  result.transform_path = options.out_transform_path;
+  result.aligned_path = options.out_aligned_path;
+  report(options.progress, "write", 1.0);
+}
+
+}  // namespace
+
+const char* to_string(AlignTrust trust) {
+  switch (trust) {
+    case AlignTrust::kYes:
+      return "yes";
+    case AlignTrust::kCheck:
+      return "check";
+    case AlignTrust::kNo:
+      return "no";
+  }
+  return "unknown";
+}
+
+const char* to_string(AlignInit init) {
+  switch (init) {
+    case AlignInit::kNone:
+      return "none";
+    case AlignInit::kPca:
+      return "pca";
+    case AlignInit::kFpfh:
+      return "fpfh";
+    case AlignInit::kPairs:
+      return "pairs";
+  }
+  return "unknown";
+}
+
+IcpMethod default_align_method(bool reference_has_faces) {
+  return reference_has_faces ? IcpMethod::kPointToSurface : IcpMethod::kPointToPlane;
+}
+
+bool AlignOptions::IsValid(std::string* error) const {
+  std::string why;
+  if (scan_path.empty()) {
+    why = "no scan file given";
+  } else if (reference_path.empty()) {
+    why = "no reference file given";
+  } else if (!(scan_mm_per_unit > 0.0) || !std::isfinite(scan_mm_per_unit) || !(reference_mm_per_unit > 0.0) ||
+             !std::isfinite(reference_mm_per_unit)) {
+    why = "millimetres per unit of the scan and the reference must be finite and > 0";
+  } else if (init == AlignInit::kPairs && pairs_path.empty()) {
+    why = "init pairs needs a pairs file";
+  } else if (!(max_distance_mm >= 0.0) || std::isnan(max_distance_mm)) {
+    why = "max distance must be > 0 mm (0: automatic)";
+  } else if (!(overlap >= 0.0 && overlap <= 1.0)) {
+    why = "overlap " + std::to_string(overlap) + " must be in (0, 1] (0: estimated)";
+  } else if (max_iterations < 1) {
+    why = "max iterations must be >= 1";
+  } else if (!(scan_voxel_mm >= 0.0) || !std::isfinite(scan_voxel_mm)) {
+    why = "scan voxel must be finite and >= 0 mm";
+  } else if (max_scan_points < 10) {
+    why = "max_scan_points must be >= 10";
+  } else if (!(max_size_ratio == 0.0 || max_size_ratio > 1.0)) {
+    why = "max_size_ratio must be > 1 (0: no check)";
+  } else if (!(free_tolerance_mm > 0.0) || !std::isfinite(free_tolerance_mm) || !(free_tolerance_deg > 0.0) ||
+             !std::isfinite(free_tolerance_deg)) {
+    why = "free tolerances must be finite and > 0";
+  } else if (!(max_noise_ratio == 0.0 || max_noise_ratio > 1.0) || !std::isfinite(max_noise_ratio)) {
+    why = "max_noise_ratio must be > 1 (0: no check)";
+  } else if (!(pose_tolerance_mm >= 0.0) || !std::isfinite(pose_tolerance_mm)) {
+    why = "pose tolerance must be finite and >= 0 mm (0: from the data)";
+  } else if (!(tolerance_mm >= 0.0) || !std::isfinite(tolerance_mm)) {
+    why = "tolerance must be finite and >= 0 mm (0: not stated)";
+  }
+  if (why.empty()) return true;
+  if (error != nullptr) *error = why;
+  return false;
+}
+
+AlignResult run_align(const AlignOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("align: " + why);
+  AlignResult result;
+  result.init = options.init;
+  // FPFH's plugin (PCL's features, ~0.1 s of the loader binding symbols) loads beside the reading and the
+  // reference's preparation; a failure is reported where FPFH runs.
+  std::future<void> fpfh_loaded;
+  if (options.init == AlignInit::kFpfh && omp_get_max_threads() > 1) {
+    fpfh_loaded = std::async(std::launch::async, [] {
+      try {
+        FpfhOptions().IsValid(nullptr);
+      } catch (const std::exception&) {
+      }
+    });
+  }
+
+  report(options.progress, "read scan", 0.0);
+  const Mesh scan_mesh = detail::read_for_alignment(options.scan_path, "scan", options.scan_mm_per_unit, result.warnings,
+                                                    options.cad, &result.cad_inputs);
+  report(options.progress, "read scan", 1.0);
+  report(options.progress, "read reference", 0.0);
+  Mesh reference_mesh = detail::read_for_alignment(options.reference_path, "reference", options.reference_mm_per_unit,
+                                                   result.warnings, options.cad, &result.cad_inputs);
+  report(options.progress, "read reference", 1.0);
+  if (options.max_size_ratio > 0.0) {
+    detail::check_sizes(scan_mesh, reference_mesh, options.scan_path, options.reference_path, options.max_size_ratio);
+  }
+  result.method = options.method.value_or(default_align_method(reference_mesh.has_faces()));
+  if (result.method == IcpMethod::kPointToSurface && !reference_mesh.has_faces()) {
+    throw Error(options.reference_path + ": point-to-surface needs a reference mesh with faces; this file holds " +
+                "points only (use point-to-plane)");
+  }
+  std::size_t merged = 0;
+  const std::vector<Eigen::Vector3d> unique = detail::unique_points(scan_mesh.vertices, &merged);
+  if (merged > 0) {
+    result.warnings.push_back(options.scan_path + ": " + std::to_string(merged) + " duplicate points merged");
+  }
+  const std::vector<Eigen::Vector3d> scan = thin(unique, options);
+  if (!reference_mesh.has_faces()) {
+    std::size_t ref_merged = 0;
+    reference_mesh.vertices = detail::unique_points(reference_mesh.vertices, &ref_merged);
+    reference_mesh.normals.clear();
+  }
+  result.scan_points = scan_mesh.vertices.size();
+  result.scan_points_used = scan.size();
+  result.reference_points = reference_mesh.vertices.size();
+  result.reference_faces = reference_mesh.faces.size();
+
+  report(options.progress, "normals", 0.0);
+  const IcpReference reference(reference_mesh);
+  report(options.progress, "normals", 1.0);
+  // Fine point-to-surface ICP needs the triangle index: built beside the coarse stage, which is mostly serial.
+  if (result.method == IcpMethod::kPointToSurface && options.init != AlignInit::kNone) reference.prepare_surface();
+  result.max_distance_mm = options.max_distance_mm > 0.0
+                               ? options.max_distance_mm
+                               : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
+  place_coarsely(scan, reference, reference_mesh, options, result.max_distance_mm, result);
+  IcpOptions fine = fine_options(options, result.method, result.max_distance_mm, !reference_mesh.has_faces());
+  // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's
+  // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
+  if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;
+  result.icp = fine_fit(scan, reference, result.T_start, fine, options.init == AlignInit::kNone);
+  if (!reference_mesh.has_faces() && result.icp.converged) {
+    // Against another scan the fit's bias is not in its linearised covariance: measured by fitting the reference to
+    // the scan (align_consistency.h) and added to it.
+    report(options.progress, "consistency", 0.0);
+    const detail::InverseConsistency consistency =
+        detail::inverse_consistency(scan, reference_mesh.vertices, result.icp, fine);
+    detail::add_consistency_bias(consistency, result.icp.degeneracy);
+    result.inverse_consistency_mm = consistency.ran ? consistency.largest_displacement_mm : -1.0;
+    report(options.progress, "consistency", 1.0);
+  }
+  result.verdict = detail::judge_alignment(scan, reference, options, result);
+  if (result.verdict.trust != AlignTrust::kNo) write_outputs(scan_mesh, options, result);
+  if (options.keep_geometry) {
+    result.scan = scan_mesh;
+    result.reference = reference_mesh;
+  }
+  return result;
+}
+
+}  // namespace conform
