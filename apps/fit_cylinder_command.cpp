@@ -20,9 +20,6 @@
 namespace conform::app {
 namespace {
 
-double radians(double deg) { return deg / 180.0 * kPi; }
-double degrees(double rad) { return rad / kPi * 180.0; }
-
 class FitCylinderCommand : public Command {
  public:
   void configure(CLI::App& c) override {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/pose_error/pose_error.h"
@@ -15,8 +16,6 @@
 
 namespace conform::app {
 namespace {
-
-double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 class PoseErrorCommand : public Command {
  public:

@@ -16,8 +16,6 @@
 namespace conform::app {
 namespace {
 
-double degrees(double rad) { return rad / kPi * 180.0; }
-
 class SaddleCommand : public Command {
  public:
   void configure(CLI::App& command) override {

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "conform/core/error.h"
+#include "conform/core/median.h"
 
 namespace conform {
 namespace {
@@ -17,13 +18,6 @@ std::string describe(const std::string& source, std::size_t index, const Eigen::
   char text[160];
   std::snprintf(text, sizeof(text), "%s: point %zu (%.3f, %.3f, %.3f)", source.c_str(), index, p.x(), p.y(), p.z());
   return text;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 // The principal direction of the points, oriented from the first point towards the last.

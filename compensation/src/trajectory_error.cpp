@@ -7,6 +7,8 @@
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 
+#include "path_closure.h"
+
 namespace conform {
 namespace {
 
@@ -26,15 +28,6 @@ double distance_near(const std::vector<Eigen::Vector3d>& path, bool closed, std:
   return best;
 }
 
-// Closed when the gap between the last and the first row is at most three times the median row spacing.
-bool is_closed(const std::vector<Eigen::Vector3d>& path) {
-  if (path.size() < 3) return false;
-  std::vector<double> spacing;
-  for (std::size_t i = 1; i < path.size(); ++i) spacing.push_back((path[i] - path[i - 1]).norm());
-  std::nth_element(spacing.begin(), spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2), spacing.end());
-  return (path.back() - path.front()).norm() <= 3.0 * spacing[spacing.size() / 2];
-}
-
 }  // namespace
 
 TrajectoryError trajectory_error(const Trajectory& estimate, const Trajectory& truth, const Trajectory& nominal) {
@@ -48,7 +41,7 @@ TrajectoryError trajectory_error(const Trajectory& estimate, const Trajectory& t
   TrajectoryError e;
   if (n == 0) return e;
   const KdTree tree(truth.points);
-  const bool closed = is_closed(truth.points);
+  const bool closed = detail::rows_close(truth.points);
   double path_sum = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     // The nearest truth vertex and its two edges: exact while rows are closer together than the path bends.

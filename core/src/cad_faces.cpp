@@ -1,5 +1,7 @@
 #include "conform/core/cad_faces.h"
 
+#include "conform/core/constants.h"
+
 #include <cmath>
 #include <limits>
 
@@ -7,7 +9,6 @@ namespace conform {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // p relative to an axis (origin o, unit a): the height along it and the unit vector away from it (zero on it).
 struct AxisFrame {

@@ -2,13 +2,13 @@
 
 #include <cmath>
 
+#include "conform/core/constants.h"
+
 namespace conform {
 
 namespace {
 
 using nlohmann::json;
-
-double degrees(double rad) { return rad * (180.0 / M_PI); }
 
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 

@@ -3,6 +3,7 @@
 // PhongSurface where the reference is curved, or unsigned point-to-point distance through KdTree when the reference
 // has no faces.
 
+#include "conform/core/constants.h"
 #include "conform/evaluation/deviation.h"
 
 #include <algorithm>
@@ -24,7 +25,6 @@ bool DeviationOptions::IsValid(std::string* error) const {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Points per progress report; each chunk is spread over the threads.
 constexpr std::size_t kChunk = std::size_t{1} << 16;
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
@@ -17,7 +18,6 @@ bool DeviationStatisticsOptions::IsValid(std::string* error) const {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Neumaier's compensated sum: the mean of a million deviations keeps its last digits, and the order is fixed.
 class Sum {

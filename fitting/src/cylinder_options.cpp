@@ -1,6 +1,7 @@
 #include <cmath>
 #include <string>
 
+#include "conform/core/constants.h"
 #include "conform/fitting/cylinder.h"
 
 namespace conform {
@@ -48,7 +49,6 @@ const char* to_string(CylinderSide side) {
 }
 
 bool CylinderFitOptions::IsValid(std::string* error) const {
-  constexpr double kHalfPi = 1.5707963267948966;
   if (!(threshold_mm >= 0.0) || !std::isfinite(threshold_mm)) {
     return fail(error, "threshold_mm must be >= 0 (0: automatic), got " + std::to_string(threshold_mm));
   }

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "conform/core/constants.h"
+#include "conform/core/median.h"
 #include "cylinder_checks.h"
 
 namespace conform::detail {
@@ -39,12 +40,6 @@ Eigen::Matrix<double, 1, 5> harmonics(double theta) {
   Eigen::Matrix<double, 1, 5> row;
   row << 1.0, std::cos(theta), std::sin(theta), std::cos(2.0 * theta), std::sin(2.0 * theta);
   return row;
-}
-
-double median(std::vector<double> v) {
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-  return v[mid];
 }
 
 struct Bin {

@@ -13,7 +13,7 @@
 namespace conform::detail {
 namespace {
 
-constexpr std::size_t kDefaultMaxPoints = 1000;
+constexpr std::size_t kFanucMaxPoints = 1000;
 
 std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
@@ -57,7 +57,7 @@ std::string program(const std::string& name, const std::string& comment, const s
 Program write_fanuc(const std::vector<RobotTarget>& targets, const ProgramOptions& options) {
   const std::string ut = frame_number(options.tool, "tool (UT)");
   const std::string uf = frame_number(options.work_object, "work object (UF)");
-  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
+  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kFanucMaxPoints : options.max_points);
   Eigen::Vector3d abc = Eigen::Vector3d::Zero();
   std::vector<std::string> moves(targets.size());
   std::vector<std::string> positions(targets.size());

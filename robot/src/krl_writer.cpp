@@ -8,7 +8,7 @@
 namespace conform::detail {
 namespace {
 
-constexpr std::size_t kDefaultMaxPoints = 2000;
+constexpr std::size_t kKrlMaxPoints = 2000;
 
 std::string speed_line(double mm_s) { return "$VEL.CP = " + num(mm_s / 1000.0, 6) + "  ; m/s\n"; }
 
@@ -33,7 +33,7 @@ Program write_krl(const std::vector<RobotTarget>& targets, const ProgramOptions&
     if (ends_path(targets, i) && !options.process_off.empty()) line += options.process_off + "\n";
     moves.push_back(line);
   }
-  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
+  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kKrlMaxPoints : options.max_points);
   Program program;
   program.parts = parts.size();
   std::string main = "&ACCESS RVP\n&REL 1\nDEF " + options.name + "( )\n; " + provenance(options, targets.size()) +

@@ -9,7 +9,7 @@
 namespace conform::detail {
 namespace {
 
-constexpr std::size_t kDefaultMaxPoints = 2000;
+constexpr std::size_t kRapidMaxPoints = 2000;
 
 std::string speeddata(const char* name, double mm_s) {
   return "  LOCAL CONST speeddata " + std::string(name) + " := [" + num(mm_s, 3) + ", 500, 5000, 1000];\n";
@@ -42,7 +42,7 @@ Program write_rapid(const std::vector<RobotTarget>& targets, const ProgramOption
   const std::string home = options.home_deg.empty()
                                ? ""
                                : "    MoveAbsJ jHome\\NoEOffs, vApproach, fine, " + tool + " \\WObj:=" + wobj + ";\n";
-  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kDefaultMaxPoints : options.max_points);
+  const auto parts = parts_of(targets.size(), options.max_points == 0 ? kRapidMaxPoints : options.max_points);
   Program program;
   program.parts = parts.size();
   Eigen::Vector4d q = Eigen::Vector4d::Zero();

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "conform/core/constants.h"
 #include "conform/evaluation/deviation.h"
 #include "conform/evaluation/statistics.h"
 #include "conform/pipelines/common/deviation_view.h"
@@ -12,7 +13,6 @@
 namespace conform {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
 
 html::Level level_of(AlignTrust trust) {
   switch (trust) {
@@ -73,9 +73,9 @@ html::Table std_table(const AlignResult& r) {
   html::Table t{"Predicted standard deviation of the pose",
                 {"rx (deg)", "ry (deg)", "rz (deg)", "tx (mm)", "ty (mm)", "tz (mm)"},
                 {}};
-  t.rows.push_back({html::number_g(s(0) * kDeg, 3, "/pose_std/rx_deg"),
-                    html::number_g(s(1) * kDeg, 3, "/pose_std/ry_deg"),
-                    html::number_g(s(2) * kDeg, 3, "/pose_std/rz_deg"), html::number_g(s(3), 3, "/pose_std/tx_mm"),
+  t.rows.push_back({html::number_g(s(0) * kDegPerRad, 3, "/pose_std/rx_deg"),
+                    html::number_g(s(1) * kDegPerRad, 3, "/pose_std/ry_deg"),
+                    html::number_g(s(2) * kDegPerRad, 3, "/pose_std/rz_deg"), html::number_g(s(3), 3, "/pose_std/tx_mm"),
                     html::number_g(s(4), 3, "/pose_std/ty_mm"), html::number_g(s(5), 3, "/pose_std/tz_mm")});
   return t;
 }
@@ -94,7 +94,7 @@ html::Table degenerate_table(const AlignResult& r) {
     const std::string at = "/degenerate_directions/" + std::to_string(i);
     t.rows.push_back({html::Cell(translation ? "translation" : "rotation", at + "/kind"), vector_text(d.direction),
                       translation ? html::number_g(d.std_mm, 3, at + "/std_mm")
-                                  : html::number_g(d.std_rad * kDeg, 3, at + "/std_deg")});
+                                  : html::number_g(d.std_rad * kDegPerRad, 3, at + "/std_deg")});
   }
   return t;
 }

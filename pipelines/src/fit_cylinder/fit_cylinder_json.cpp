@@ -6,12 +6,6 @@
 #include "conform/pipelines/common/json_values.h"
 
 namespace conform {
-namespace {
-
-double degrees(double rad) { return rad / kPi * 180.0; }
-
-}  // namespace
-
 nlohmann::json fit_cylinder_json(const FitCylinderJobResult& job) {
   const CylinderFitResult& f = job.fit;
   nlohmann::json j = {{"input", job.input_path},

@@ -2,13 +2,13 @@
 
 #include <cmath>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/common/json_values.h"
 
 namespace conform {
 namespace {
 
 // deg / 180 first, so that 90 deg is exactly pi / 2.
-double radians(double deg) { return deg / 180.0 * M_PI; }
 
 }  // namespace
 

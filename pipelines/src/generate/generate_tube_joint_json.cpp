@@ -3,12 +3,6 @@
 #include "conform/core/constants.h"
 
 namespace conform {
-namespace {
-
-double radians(double deg) { return deg / 180.0 * kPi; }
-
-}  // namespace
-
 GenerateTubeJointOptions generate_tube_joint_options(const GenerateTubeJointRequest& r) {
   GenerateTubeJointOptions o = r.job;
   o.spec.pitch_rad = radians(r.pitch_deg);

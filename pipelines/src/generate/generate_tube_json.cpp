@@ -7,7 +7,6 @@ namespace conform {
 namespace {
 
 // deg / 180 first, so that 90 deg is exactly pi / 2.
-double radians(double deg) { return deg / 180.0 * kPi; }
 
 }  // namespace
 

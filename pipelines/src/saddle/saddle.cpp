@@ -3,16 +3,11 @@
 #include <string>
 
 #include "conform/core/atomic_file.h"
+#include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 
 namespace conform {
-namespace {
-
-constexpr double kHalfPi = 1.5707963267948966;
-
-}  // namespace
-
 SaddleStepRule constant_speed_rule(const SaddleGeometry& geometry) {
   const bool papers_joint = geometry.pitch_rad == kHalfPi && geometry.offset_mm == 0.0;
   return papers_joint ? SaddleStepRule::kVariableAngle : SaddleStepRule::kArcLength;

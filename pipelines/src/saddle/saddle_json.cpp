@@ -8,8 +8,6 @@ namespace conform {
 namespace {
 
 // deg / 180 first, so that 90 deg is exactly pi / 2 (the paper's joint) and 45 deg exactly pi / 4.
-double radians(double deg) { return deg / 180.0 * kPi; }
-double degrees(double rad) { return rad / kPi * 180.0; }
 
 }  // namespace
 

@@ -11,7 +11,6 @@
 namespace conform {
 namespace {
 
-constexpr double kDegPerRad = 57.29577951308232;
 
 constexpr int kAround = 96;  // context meshes: azimuth steps of the pipe, grid steps of the leg patch
 

@@ -11,8 +11,6 @@
 namespace conform {
 namespace {
 
-double radians(double deg) { return deg / 180.0 * kPi; }
-double degrees(double rad) { return rad / kPi * 180.0; }
 
 // CSV `phi_deg,alpha_deg`: the groove table of Eq. (5), generalised.
 std::vector<std::pair<double, double>> read_groove_table(const std::string& path) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/tube_joint/tube_joint_json.h"
 
 #include "common/report_pages.h"
@@ -12,7 +13,6 @@ namespace {
 using html::count;
 using html::number;
 
-constexpr double kDegPerRad = 57.29577951308232;
 
 // An option given in degrees, back from radians for the page: 30, not 29.999999999999996.
 double option_deg(double rad) { return std::round(rad * kDegPerRad * 1e9) / 1e9; }

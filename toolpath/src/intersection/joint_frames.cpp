@@ -1,15 +1,11 @@
 #include "conform/toolpath/intersection/joint_frames.h"
 
+#include "conform/core/constants.h"
+
 #include <cmath>
 #include <sstream>
 
 namespace conform {
-namespace {
-
-constexpr double kHalfPi = 1.5707963267948966;
-
-}  // namespace
-
 bool TubeJointSpec::IsValid(std::string* error) const {
   std::ostringstream why;
   if (!std::isfinite(pitch_rad) || !std::isfinite(offset_mm) || !std::isfinite(protrusion_mm)) {

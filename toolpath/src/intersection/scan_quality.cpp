@@ -6,18 +6,12 @@
 #include <Eigen/Eigenvalues>
 
 #include "conform/core/error.h"
+#include "conform/core/median.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/toolpath/intersection/local_quadric.h"
 
 namespace conform {
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // Median edge length over (a stride sample of at most ~60000 of) the mesh's faces.
 double median_edge(const Mesh& mesh) {

@@ -11,7 +11,6 @@
 namespace conform {
 namespace {
 
-constexpr double kHalfPi = kPi / 2;
 
 bool is_angle(double a) { return std::isfinite(a) && a >= 0.0 && a < kHalfPi; }
 

@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 
 namespace conform {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.141592653589793;
 
 double radial(const Eigen::Vector3d& x, const TubeAxis& axis) {
   const Eigen::Vector3d d = x - axis.point;
@@ -61,7 +61,7 @@ bool line_hits(const Eigen::Vector3d& tip, const Eigen::Vector3d& p, const ToolS
 std::string describe(const char* what, const ToolViolation& v, std::size_t points, const char* advice) {
   char text[400];
   std::snprintf(text, sizeof text, "%s at %zu of %zu points (first at azimuth %.1f deg, (%.3f, %.3f, %.3f) mm): %s",
-                what, v.count, points, v.first_phi_rad * kDeg, v.first_where.x(), v.first_where.y(), v.first_where.z(),
+                what, v.count, points, v.first_phi_rad * kDegPerRad, v.first_where.x(), v.first_where.y(), v.first_where.z(),
                 advice);
   return text;
 }
@@ -80,7 +80,7 @@ std::vector<std::string> describe_all(const ToolSafetyResult& r, std::size_t n, 
     std::snprintf(advice, sizeof advice,
                   "the weld angle %.1f deg must stay below the groove angle wherever the torch is to point into the "
                   "groove, or the standoff must exceed d_s / sin(psi - alpha_w)",
-                  tool_options.weld_angle_rad * kDeg);
+                  tool_options.weld_angle_rad * kDegPerRad);
     problems.push_back(describe("the weld torch's tip lies inside the stub wall", r.weld_tip_in_stub, n, advice));
   }
   if (r.weld_tip_in_leg.count > 0) {

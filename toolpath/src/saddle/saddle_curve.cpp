@@ -13,7 +13,6 @@
 namespace conform {
 namespace {
 
-constexpr double kHalfPi = 1.5707963267948966;
 // Below this pitch the seam stretches by 1 / sin(pitch) > 57: a brace that lies almost along the leg.
 constexpr double kMinPitchRad = kPi / 180.0;
 // The seam's arc length: relative tolerance of the adaptive quadrature (fitting/arc_length.h). Near a sharp turn the
