@@ -6,17 +6,13 @@
 #include "conform/compensation/sicp_blend.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
+#include "conform/core/median.h"
 #include "conform/core/nearest_neighbors.h"
+
+#include "path_closure.h"
 
 namespace conform {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 std::string list(const std::vector<std::size_t>& v) {
   std::string s;
@@ -395,13 +391,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
       &distances);
   c.rows.resize(nominal.points.size());
   // A closed path (its ends within three median row spacings) wraps for the path direction at its ends.
-  bool closed = false;
-  if (nominal.points.size() >= 3) {
-    std::vector<double> spacing;
-    for (std::size_t i = 1; i < nominal.points.size(); ++i)
-      spacing.push_back((nominal.points[i] - nominal.points[i - 1]).norm());
-    closed = (nominal.points.back() - nominal.points.front()).norm() <= 3.0 * median(spacing);
-  }
+  const bool closed = detail::rows_close(nominal.points);
   if (!row_edge_points.empty() && row_edge_points.size() != nominal.points.size())
     throw Error("S-ICP checks: the edge point counts differ from the trajectory's rows");
   for (std::size_t i = 0; i < c.rows.size(); ++i) {

@@ -1,4 +1,6 @@
 #include "conform/compensation/sicp_surface_misfit.h"
+#include "conform/core/constants.h"
+#include "conform/core/median.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,25 +10,11 @@
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 
+#include "path_closure.h"
+
 namespace conform {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
-// A closed path: its ends within three median row spacings (as the checks and the normal smoothing read it).
-bool is_closed(const std::vector<Eigen::Vector3d>& points) {
-  if (points.size() < 3) return false;
-  std::vector<double> spacing;
-  for (std::size_t i = 1; i < points.size(); ++i) spacing.push_back((points[i] - points[i - 1]).norm());
-  return (points.back() - points.front()).norm() <= 3.0 * median(spacing);
-}
 
 // The path's direction at each row, from the rows before and after.
 std::vector<Eigen::Vector3d> path_tangents(const std::vector<Eigen::Vector3d>& points, bool closed) {
@@ -125,9 +113,9 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
   std::vector<SicpRowMisfit> out(t.points.size());
   if (t.points.empty() || scan.empty()) return out;
   const std::vector<PointResidual> r = residuals_near_path(t, scan, residual, o.radius_mm);
-  const bool closed = is_closed(t.points);
+  const bool closed = detail::rows_close(t.points);
   const std::vector<Eigen::Vector3d> tangents = path_tangents(t.points, closed);
-  const double face = std::cos(o.face_angle_deg / kDeg);
+  const double face = std::cos(o.face_angle_deg / kDegPerRad);
   const double noise = std::max(noise_mm, 1e-6);
   std::vector<double> near_mean(t.points.size(), 0.0);
   std::vector<int> indices;
@@ -177,9 +165,9 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     // The surface h = a + b u + c v along the normal: its normal tilts by -(b, c); so should the tool normal.
     const Eigen::Vector3d expected = (predicted[i] - fit(1) * along - fit(2) * across).normalized();
     const Eigen::Vector3d difference = axis - expected;
-    m.normal_error_deg = std::acos(std::clamp(expected.dot(axis), -1.0, 1.0)) * kDeg;
-    m.along_error_deg = std::abs(std::asin(std::clamp(difference.dot(along), -1.0, 1.0))) * kDeg;
-    m.across_error_deg = std::abs(std::asin(std::clamp(difference.dot(across), -1.0, 1.0))) * kDeg;
+    m.normal_error_deg = std::acos(std::clamp(expected.dot(axis), -1.0, 1.0)) * kDegPerRad;
+    m.along_error_deg = std::abs(std::asin(std::clamp(difference.dot(along), -1.0, 1.0))) * kDegPerRad;
+    m.across_error_deg = std::abs(std::asin(std::clamp(difference.dot(across), -1.0, 1.0))) * kDegPerRad;
     m.along_z = std::abs(fit(1)) / std::sqrt(std::max(cov(1, 1), 1e-30));
     m.across_z = std::abs(fit(2)) / std::sqrt(std::max(cov(2, 2), 1e-30));
     if (near >= 5) {

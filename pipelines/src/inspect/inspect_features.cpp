@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/fitting/cylinder.h"
 
@@ -11,7 +12,6 @@ namespace conform::detail {
 
 namespace {
 
-constexpr double kDegPerRad = 57.29577951308232;
 
 double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of the cross and dot products: accurate at small angles, where acos of the dot loses half its digits.
