@@ -28,49 +28,65 @@ struct Edge {
 
 const Eigen::Vector3d& vertex(const Mesh& mesh, std::int32_t i) { return mesh.vertices[static_cast<std::size_t>(i)]; }
 
-// Edges sorted by their vertex pair, so that the faces sharing one are adjacent in the list.
+// Edges sorted by their vertex pair (then face), so that the faces sharing one are adjacent in the list: a counting
+// sort by the lower vertex, then each vertex's few edges sorted in place (the order of one full sort, a third of its
+// time on a 300k-face mesh).
 std::vector<Edge> sorted_edges(const Mesh& mesh) {
-  std::vector<Edge> edges;
-  edges.reserve(3 * mesh.faces.size());
+  std::vector<std::size_t> start(mesh.vertices.size() + 1, 0);
+  for (const Face& face : mesh.faces) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t i = face[static_cast<std::size_t>(k)], j = face[static_cast<std::size_t>((k + 1) % 3)];
+      ++start[static_cast<std::size_t>(std::min(i, j)) + 1];
+    }
+  }
+  for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+  std::vector<Edge> edges(3 * mesh.faces.size());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const std::int32_t i = mesh.faces[f][static_cast<std::size_t>(k)];
       const std::int32_t j = mesh.faces[f][static_cast<std::size_t>((k + 1) % 3)];
-      edges.push_back({std::min(i, j), std::max(i, j), f});
+      edges[fill[static_cast<std::size_t>(std::min(i, j))]++] = {std::min(i, j), std::max(i, j), f};
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
-    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
-  });
+  const auto by_pair = [](const Edge& x, const Edge& y) { return x.b != y.b ? x.b < y.b : x.face < y.face; };
+  for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+    std::sort(edges.begin() + static_cast<std::ptrdiff_t>(start[v]),
+              edges.begin() + static_cast<std::ptrdiff_t>(start[v + 1]), by_pair);
+  }
   return edges;
 }
 
 // Per face, the faces across its edges (every pair of faces that share an edge, non-manifold edges included), as
-// compressed rows: face f's neighbours are neighbour[start[f]] .. neighbour[start[f + 1] - 1].
+// compressed rows: face f's neighbours are neighbour[start[f]] .. neighbour[start[f + 1] - 1], in the order of the
+// edges (the regions and widths below do not depend on it).
 struct Neighbours {
   std::vector<std::size_t> start, neighbour;
 };
 
-Neighbours edge_neighbours(const Mesh& mesh, const std::vector<Edge>& edges) {
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  pairs.reserve(edges.size());
+// Calls fn(f, g) for every ordered pair of different faces that share an edge.
+template <typename Fn>
+void for_each_edge_pair(const std::vector<Edge>& edges, Fn&& fn) {
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
     for (std::size_t p = i; p < j; ++p) {
       for (std::size_t q = i; q < j; ++q) {
-        if (edges[p].face != edges[q].face) pairs.emplace_back(edges[p].face, edges[q].face);
+        if (edges[p].face != edges[q].face) fn(edges[p].face, edges[q].face);
       }
     }
     i = j;
   }
-  std::sort(pairs.begin(), pairs.end());
+}
+
+Neighbours edge_neighbours(const Mesh& mesh, const std::vector<Edge>& edges) {
   Neighbours out;
   out.start.assign(mesh.faces.size() + 1, 0);
-  for (const auto& [f, g] : pairs) ++out.start[f + 1];
+  for_each_edge_pair(edges, [&](std::size_t f, std::size_t) { ++out.start[f + 1]; });
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) out.start[f + 1] += out.start[f];
-  out.neighbour.reserve(pairs.size());
-  for (const auto& fg : pairs) out.neighbour.push_back(fg.second);
+  out.neighbour.resize(out.start.back());
+  std::vector<std::size_t> fill(out.start.begin(), out.start.end() - 1);
+  for_each_edge_pair(edges, [&](std::size_t f, std::size_t g) { out.neighbour[fill[f]++] = g; });
   return out;
 }
 
