@@ -9,6 +9,7 @@
 #include "cad_options.h"
 #include "command.h"
 #include "input_units.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/align/align.h"
@@ -20,7 +21,6 @@
 namespace conform::app {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
 
 std::string vector_text(const Eigen::Vector3d& v, int decimals) {
   char buffer[128];
@@ -53,7 +53,7 @@ std::string failure_message(const AlignResult& r) {
     }
     case IcpTermination::kMaxIterations:
       return "registration did not converge within " + std::to_string(icp.iterations) + " iterations (last step " +
-             std::to_string(icp.last_rotation_rad * kDeg) + " deg, " + std::to_string(icp.last_translation_mm) +
+             std::to_string(icp.last_rotation_rad * kDegPerRad) + " deg, " + std::to_string(icp.last_translation_mm) +
              " mm). Raise --max-iterations, or start closer (--init)";
     case IcpTermination::kConverged:
       return "the pose is not to be trusted: " + r.verdict.summary.substr(r.verdict.summary.find(": ") + 2) +
@@ -194,13 +194,13 @@ class AlignCommand : public Command {
     for (const DegenerateDirection& d : icp.degeneracy.directions) {
       const bool t = d.kind == MotionKind::kTranslation;
       std::printf("degenerate    %s (predicted std %.3g %s, relative eigenvalue %.2g)\n", describe(d).c_str(),
-                  t ? d.std_mm : d.std_rad * kDeg, t ? "mm" : "deg", d.relative_eigenvalue);
+                  t ? d.std_mm : d.std_rad * kDegPerRad, t ? "mm" : "deg", d.relative_eigenvalue);
     }
     const Vector6d& s = icp.degeneracy.std;
     std::printf(
         "pose std      rx %.2g ry %.2g rz %.2g deg, tx %.2g ty %.2g tz %.2g mm (free above %.3g mm, %.3g deg)\n",
-        s(0) * kDeg, s(1) * kDeg, s(2) * kDeg, s(3), s(4), s(5), icp.degeneracy.tolerance_mm,
-        icp.degeneracy.tolerance_rad * kDeg);
+        s(0) * kDegPerRad, s(1) * kDegPerRad, s(2) * kDegPerRad, s(3), s(4), s(5), icp.degeneracy.tolerance_mm,
+        icp.degeneracy.tolerance_rad * kDegPerRad);
     const AlignVerdict& v = r.verdict;
     std::printf("noise mm      fit %.4g, scan %.4g", v.fit_noise_mm, v.scan_noise_mm);
     if (v.reference_noise_mm > 0.0) std::printf(", reference %.4g", v.reference_noise_mm);

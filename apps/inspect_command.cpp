@@ -9,6 +9,7 @@
 
 #include "cad_options.h"
 #include "command.h"
+#include "conform/core/constants.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/inspect/inspect.h"
 #include "conform/pipelines/inspect/inspect_json.h"
@@ -19,7 +20,6 @@
 namespace conform::app {
 namespace {
 
-constexpr double kRadPerDeg = 0.017453292519943295;
 
 class InspectCommand : public Command {
  public:
@@ -70,7 +70,7 @@ class InspectCommand : public Command {
   int run() override {
     options_.mm_per_unit = millimetres_per_unit(units_);
     options_.best_fit = align_ == "best-fit";
-    options_.max_normal_angle_rad = normal_angle_deg_ * kRadPerDeg;
+    options_.max_normal_angle_rad = radians(normal_angle_deg_);
     options_.progress = stderr_progress(false);
     options_.cad.progress = options_.progress;
     options_.keep_geometry = !report_path_.empty();
@@ -102,7 +102,7 @@ class InspectCommand : public Command {
       std::printf("datums       faces");
       for (const std::size_t id : options_.datum_faces) std::printf(" %zu", id);
       std::printf(": turned %.4f deg from the initial pose, each moved along its normal by",
-                  Eigen::AngleAxisd(r.T_datum_initial.linear()).angle() / kRadPerDeg);
+                  degrees(Eigen::AngleAxisd(r.T_datum_initial.linear()).angle()));
       for (const double m : r.datum_moved_mm) std::printf(" %.4f", m);
       std::printf(" mm\n");
     }

@@ -1,3 +1,4 @@
+#include "conform/core/constants.h"
 #include "conform/pipelines/align/align_json.h"
 
 #include "conform/pipelines/common/cad_json.h"
@@ -11,7 +12,6 @@
 namespace conform {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
 
 nlohmann::json degenerate_json(const DegeneracyReport& report) {
   nlohmann::json list = nlohmann::json::array();
@@ -20,7 +20,7 @@ nlohmann::json degenerate_json(const DegeneracyReport& report) {
                             {"direction", json_of(d.direction)},
                             {"relative_eigenvalue", d.relative_eigenvalue},
                             {"std_mm", d.std_mm},
-                            {"std_deg", d.std_rad * kDeg}};
+                            {"std_deg", d.std_rad * kDegPerRad}};
     if (d.kind == MotionKind::kRotation) {
       entry["point_mm"] = json_of(d.point);
       entry["pitch_mm_per_rad"] = d.pitch_mm_per_rad;
@@ -37,7 +37,7 @@ nlohmann::json constraint_json(const DegeneracyReport& report) {
     list.push_back({{"rotation_rad", json_of(d.rotation)},
                     {"translation_mm", json_of(d.translation)},
                     {"relative_eigenvalue", d.relative_eigenvalue},
-                    {"std_deg", d.std_rad * kDeg},
+                    {"std_deg", d.std_rad * kDegPerRad},
                     {"std_mm", d.std_mm},
                     {"held", d.held}});
   }
@@ -46,7 +46,7 @@ nlohmann::json constraint_json(const DegeneracyReport& report) {
 
 nlohmann::json pose_std_json(const DegeneracyReport& report) {
   const Vector6d& s = report.std;
-  return {{"rx_deg", s(0) * kDeg}, {"ry_deg", s(1) * kDeg}, {"rz_deg", s(2) * kDeg},
+  return {{"rx_deg", s(0) * kDegPerRad}, {"ry_deg", s(1) * kDegPerRad}, {"rz_deg", s(2) * kDegPerRad},
           {"tx_mm", s(3)},         {"ty_mm", s(4)},         {"tz_mm", s(5)}};
 }
 
@@ -113,7 +113,7 @@ nlohmann::json align_json(const AlignResult& r) {
                       {"covariance_centre_mm", json_of(c.centre)},
                       {"constraint_directions", constraint_json(c)},
                       {"free_tolerance_mm", c.tolerance_mm},
-                      {"free_tolerance_deg", c.tolerance_rad * kDeg},
+                      {"free_tolerance_deg", c.tolerance_rad * kDegPerRad},
                       {"iterations", icp.iterations},
                       {"termination", to_string(icp.termination)},
                       {"rms_mm", icp.rms_mm},
