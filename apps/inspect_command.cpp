@@ -38,9 +38,10 @@ class InspectCommand : public Command {
     c.add_option("--align", align_, "best-fit: align the scan to the CAD first (conform align's defaults)")
         ->check(CLI::IsMember({"best-fit"}));
     c.add_option("--datums", options_.datum_faces,
-                 "Datum faces A,B,C (plane face ids, primary first; 1 to 3): after the initial pose the scan is moved "
-                 "by the 3-2-1 datum fit (the primary's plane onto its nominal, the secondary turned and moved across "
-                 "it, the tertiary along the line left free) and every figure is in the datum frame")
+                 "Datum faces A,B,C (face ids, primary first; 1 to 3): after the initial pose the scan is moved by the "
+                 "3-2-1 datum fit and every figure is in the datum frame. A is a plane; B a plane (1 rotation, 1 "
+                 "translation) or a cylinder square to A (its axis: 2 translations); C a plane or a cylinder (what is "
+                 "left: a translation after two planes, the turn about B's axis after a cylinder)")
         ->delimiter(',');
     c.add_option("--max-distance", options_.max_distance_mm,
                  "A point farther than this from the CAD is on no face, mm; default 0: automatic, the larger of 0.5 "
@@ -52,8 +53,9 @@ class InspectCommand : public Command {
     c.add_option("--min-fit-points", options_.min_fit_points,
                  "Fewer points on a face: no feature fitted; default 30");
     c.add_option("--tolerances", options_.tolerances_path,
-                 "Limits per face, .csv with columns face, lower_mm, upper_mm, form_mm (an empty cell: not "
-                 "toleranced): pass/fail per face and a verdict; the exit code stays 0 when the job ran");
+                 "Limits per face, .csv with columns face and any of lower_mm, upper_mm, form_mm, and for a hole or "
+                 "boss (named by one of its faces) diameter_lower_mm, diameter_upper_mm, position_mm (an empty cell: "
+                 "not toleranced): pass/fail per face and feature and a verdict; the exit code stays 0 when the job ran");
     c.add_option("--out-faces", options_.out_faces_path, "Write one row per face as .csv");
     c.add_option("--units", units_, "Units of the scan and the transform (mm, cm, m, in); the CAD says its own");
     add_report_option(c, report_path_);
@@ -129,8 +131,33 @@ class InspectCommand : public Command {
       } else if (f.fitted && f.nominal.type == CadSurfaceType::kSphere) {
         std::printf("radius %.4f (nominal %.4f), centre offset %.4f mm\n", f.radius_mm, f.nominal.radius_mm,
                     f.centre_offset_mm);
+      } else if (f.fitted && f.nominal.type == CadSurfaceType::kCone) {
+        std::printf("half-angle %.4f deg (nominal %.4f), axis offset %.4f mm\n", f.half_angle_deg,
+                    degrees(f.nominal.half_angle_rad), f.axis_offset_mm);
+      } else if (f.fitted && f.nominal.type == CadSurfaceType::kTorus) {
+        std::printf("radii %.4f / %.4f (nominal %.4f / %.4f), centre offset %.4f mm\n", f.radius_mm,
+                    f.minor_radius_mm, f.nominal.radius_mm, f.nominal.minor_radius_mm, f.centre_offset_mm);
       } else if (f.fitted && f.nominal.type == CadSurfaceType::kPlane) {
         std::printf("normal %.4f deg from nominal, offset %.4f mm\n", f.angle_to_nominal_deg, f.plane_offset_mm);
+      } else {
+        std::printf("%s\n", f.fit_note.c_str());
+      }
+    }
+    for (const FeatureInspection& feature : r.features) {
+      const FaceInspection& f = feature.measured;
+      if (f.points == 0) continue;
+      std::string faces;
+      for (const std::size_t id : feature.faces) faces += (faces.empty() ? "" : "+") + std::to_string(id);
+      std::printf("feature %zu   %s, faces %s, %zu points: ", feature.id, f.nominal.sense < 0 ? "hole" : "boss",
+                  faces.c_str(), f.points);
+      if (feature.verdict) {
+        std::printf("%s ", !feature.verdict->measured ? "NOT MEASURED" : feature.verdict->pass ? "pass" : "FAIL");
+      }
+      if (f.fitted) {
+        std::printf("diameter %.4f (nominal %.4f), position %.4f mm, cylindricity %.4f mm", 2.0 * f.radius_mm,
+                    2.0 * f.nominal.radius_mm, f.position_mm, f.form.width_mm);
+        if (std::isfinite(f.perpendicularity_mm)) std::printf(", perpendicularity %.4f mm", f.perpendicularity_mm);
+        std::printf("\n");
       } else {
         std::printf("%s\n", f.fit_note.c_str());
       }

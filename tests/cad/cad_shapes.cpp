@@ -114,6 +114,17 @@ TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm) {
   return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, z0_mm), gp::DZ()), radius_mm, z1_mm - z0_mm).Shape();
 }
 
+TopoDS_Shape drill_split_hole(const TopoDS_Shape& part, double x_mm, double y_mm, double radius_mm, double z0_mm,
+                              double z1_mm) {
+  TopoDS_Shape out = part;
+  // A half cylinder spans the angle pi from its x direction about z: from +x the half y >= y_mm, from -x the other.
+  for (const gp_Dir& start : {gp_Dir(1, 0, 0), gp_Dir(-1, 0, 0)}) {
+    const gp_Ax2 axes(gp_Pnt(x_mm, y_mm, z0_mm), gp::DZ(), start);
+    out = BRepAlgoAPI_Cut(out, BRepPrimAPI_MakeCylinder(axes, radius_mm, z1_mm - z0_mm, M_PI).Shape()).Shape();
+  }
+  return out;
+}
+
 TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,
                                 const std::vector<std::array<std::int32_t, 3>>& triangles) {
   TopoDS_Compound compound;

@@ -35,6 +35,11 @@ TopoDS_Shape cylinder();
 TopoDS_Shape torus();
 // A solid cylinder of radius r along z from z0 to z1.
 TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm);
+// `part` with a hole of radius r along z through (x, y), from z0 to z1, cut as two half cylinders (the halves
+// y >= y_mm and y <= y_mm of the hole): its wall is two cylindrical faces on one cylinder, as many CAD kernels and
+// STEP exporters split a full cylinder.
+TopoDS_Shape drill_split_hole(const TopoDS_Shape& part, double x_mm, double y_mm, double radius_mm, double z0_mm,
+                              double z1_mm);
 // Every triangle a planar face of its own, in one compound (free faces, wound as the triangles): a mesh as CAD, whose
 // tessellation gives back the same triangles.
 TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/cad_inputs.h"
+#include "conform/core/constants.h"
 #include "conform/core/csv.h"
 #include "conform/core/error.h"
 #include "conform/core/geometry.h"
@@ -18,8 +19,9 @@
 #include "conform/evaluation/deviation.h"
 #include "conform/pipelines/align/align.h"
 #include "conform/registration/surface_noise.h"
-#include "inspect/inspect_features.h"
 #include "inspect/inspect_datums.h"
+#include "inspect/inspect_feature_groups.h"
+#include "inspect/inspect_features.h"
 #include "inspect/inspect_faces_csv.h"
 #include "inspect/inspect_tolerances.h"
 
@@ -155,17 +157,32 @@ void check_datum_ids(const InspectOptions& options, std::size_t face_count) {
   }
 }
 
-// The 3-2-1 datum fit on the points assigned at the initial pose; the scan and its normals moved by it, and assigned
-// again.
-void apply_datums(const CadFaces& cad, const InspectOptions& options, std::vector<Eigen::Vector3d>& points,
+// The faces of the feature a cylinder face belongs to (the face alone for other faces), 0-based.
+std::vector<std::size_t> faces_with(const std::vector<std::vector<std::size_t>>& features, std::size_t face) {
+  for (const std::vector<std::size_t>& group : features) {
+    for (const std::size_t f : group) {
+      if (f == face) return group;
+    }
+  }
+  return {face};
+}
+
+// The 3-2-1 datum fit on the points assigned at the initial pose (a cylinder datum: its whole feature's); the scan
+// and its normals moved by it, and assigned again.
+void apply_datums(const CadFaces& cad, const std::vector<std::vector<std::size_t>>& features,
+                  const InspectOptions& options, std::vector<Eigen::Vector3d>& points,
                   std::vector<Eigen::Vector3d>& normals, InspectResult& result) {
   std::vector<detail::DatumInput> datums;
   for (const std::size_t id : options.datum_faces) {
     detail::DatumInput d;
     d.face_id = id;
-    d.nominal = cad.faces[id - 1];
+    const std::vector<std::size_t> group = faces_with(features, id - 1);
+    d.nominal = group.size() > 1 ? detail::feature_nominal(cad.faces, group) : cad.faces[id - 1];
     for (std::size_t i = 0; i < points.size(); ++i) {
-      if (result.point_face[i] == id) d.points.push_back(points[i]);
+      if (result.point_face[i] == 0) continue;
+      if (std::find(group.begin(), group.end(), result.point_face[i] - 1) == group.end()) continue;
+      d.points.push_back(points[i]);
+      d.normals.push_back(normals[i]);
     }
     datums.push_back(std::move(d));
   }
@@ -178,41 +195,67 @@ void apply_datums(const CadFaces& cad, const InspectOptions& options, std::vecto
   assign_points(points, normals, cad, options, result);
 }
 
-// Cylinders whose nominal axis is the primary datum's normal (within 0.1 deg): how far their fitted axis leans.
-void add_perpendicularity(const CadFace& primary, InspectResult& result) {
-  const double parallel = std::cos(0.1 * M_PI / 180.0);
-  for (FaceInspection& f : result.faces) {
-    if (!f.fitted || f.nominal.type != CadSurfaceType::kCylinder) continue;
-    if (std::abs(f.nominal.axis.dot(primary.axis)) < parallel) continue;
-    f.perpendicularity_mm = f.length_mm * f.axis.cross(primary.axis).norm();
+// A cylinder whose nominal axis is the primary datum's normal (within 0.1 deg): how far its fitted axis leans.
+void add_perpendicularity(const CadFace& primary, FaceInspection& f) {
+  const double parallel = std::cos(radians(0.1));
+  if (!f.fitted || f.nominal.type != CadSurfaceType::kCylinder) return;
+  if (std::abs(f.nominal.axis.dot(primary.axis)) < parallel) return;
+  f.perpendicularity_mm = f.length_mm * f.axis.cross(primary.axis).norm();
+}
+
+// A face's points, their normals and their deviations from it.
+struct FacePoints {
+  std::vector<Eigen::Vector3d> points, normals;
+  std::vector<double> deviation_mm;
+};
+
+void measure_features(const CadFaces& cad, const std::vector<std::vector<std::size_t>>& features,
+                      const std::vector<FacePoints>& on_face, const InspectOptions& options, InspectResult& result) {
+  result.features.clear();
+  for (const std::vector<std::size_t>& group : features) {
+    FeatureInspection feature;
+    feature.id = result.features.size() + 1;
+    FacePoints all;
+    for (const std::size_t f : group) {
+      feature.faces.push_back(f + 1);
+      const FacePoints& some = on_face[f];
+      all.points.insert(all.points.end(), some.points.begin(), some.points.end());
+      all.normals.insert(all.normals.end(), some.normals.begin(), some.normals.end());
+      all.deviation_mm.insert(all.deviation_mm.end(), some.deviation_mm.begin(), some.deviation_mm.end());
+    }
+    feature.measured.id = feature.id;
+    feature.measured.nominal = detail::feature_nominal(cad.faces, group);
+    detail::measure_face(all.points, all.normals, all.deviation_mm, options, feature.measured);
+    result.features.push_back(std::move(feature));
   }
 }
 
 void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
-                   const CadFaces& cad, const InspectOptions& options, InspectResult& result) {
+                   const CadFaces& cad, const std::vector<std::vector<std::size_t>>& features,
+                   const InspectOptions& options, InspectResult& result) {
   report(options.progress, "faces", 0.0);
   const std::vector<double> to_mesh = mesh_deviations(points, cad, result);
-  std::vector<std::vector<std::size_t>> members(cad.faces.size());
+  std::vector<FacePoints> on_face(cad.faces.size());
+  result.deviation_mm.assign(points.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (result.point_face[i] != 0) members[result.point_face[i] - 1].push_back(i);
+    if (result.point_face[i] == 0) continue;
+    const std::size_t f = result.point_face[i] - 1;
+    const CadFace& nominal = cad.faces[f];
+    result.deviation_mm[i] = is_analytic(nominal.type) ? analytic_signed_distance(nominal, points[i]) : to_mesh[i];
+    on_face[f].points.push_back(points[i]);
+    on_face[f].normals.push_back(normals[i]);
+    on_face[f].deviation_mm.push_back(result.deviation_mm[i]);
   }
   result.faces.resize(cad.faces.size());
-  result.deviation_mm.assign(points.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {
     FaceInspection& face = result.faces[f];
     face.id = f + 1;
     face.nominal = cad.faces[f];
-    std::vector<Eigen::Vector3d> p, n;
-    std::vector<double> d;
-    for (const std::size_t i : members[f]) {
-      p.push_back(points[i]);
-      n.push_back(normals[i]);
-      d.push_back(is_analytic(face.nominal.type) ? analytic_signed_distance(face.nominal, points[i]) : to_mesh[i]);
-      result.deviation_mm[i] = d.back();
-    }
-    detail::measure_face(p, n, d, options, face);
-    report(options.progress, "faces", static_cast<double>(f + 1) / static_cast<double>(cad.faces.size()));
+    detail::measure_face(on_face[f].points, on_face[f].normals, on_face[f].deviation_mm, options, face);
+    report(options.progress, "faces", static_cast<double>(f + 1) / static_cast<double>(cad.faces.size() + 1));
   }
+  measure_features(cad, features, on_face, options, result);
+  report(options.progress, "faces", 1.0);
 }
 
 // PCA normals of the scan's points (sign ignored by the normal check).
@@ -269,10 +312,9 @@ InspectResult run_inspect(const InspectOptions& options) {
   result.cad_inputs.push_back(cad_report);
   report(options.progress, "read CAD", 1.0);
   // Read before the work, so that a bad file stops the job at once.
-  const std::vector<FaceTolerance> tolerances = options.tolerances_path.empty()
-                                                    ? std::vector<FaceTolerance>()
-                                                    : detail::read_face_tolerances(options.tolerances_path,
-                                                                                   cad.faces.size());
+  const detail::Tolerances tolerances = options.tolerances_path.empty()
+                                            ? detail::Tolerances()
+                                            : detail::read_tolerances(options.tolerances_path, cad.faces);
   check_datum_ids(options, cad.faces.size());
 
   if (!options.transform_path.empty()) {
@@ -295,12 +337,17 @@ InspectResult run_inspect(const InspectOptions& options) {
                                : options.max_distance_mm;
   std::vector<Eigen::Vector3d> normals = scan_normals(scan, options.normal_neighbours);
 
+  const std::vector<std::vector<std::size_t>> features = detail::cylinder_features(cad.faces);
   assign_points(scan.vertices, normals, cad, options, result);
-  if (!options.datum_faces.empty()) apply_datums(cad, options, scan.vertices, normals, result);
-  measure_faces(scan.vertices, normals, cad, options, result);
+  if (!options.datum_faces.empty()) apply_datums(cad, features, options, scan.vertices, normals, result);
+  measure_faces(scan.vertices, normals, cad, features, options, result);
   warn_unassigned(result);
-  if (!options.datum_faces.empty()) add_perpendicularity(cad.faces[options.datum_faces[0] - 1], result);
-  if (!tolerances.empty()) detail::judge_tolerances(tolerances, result);
+  if (!options.datum_faces.empty()) {
+    const CadFace& primary = cad.faces[options.datum_faces[0] - 1];
+    for (FaceInspection& f : result.faces) add_perpendicularity(primary, f);
+    for (FeatureInspection& f : result.features) add_perpendicularity(primary, f.measured);
+  }
+  if (!tolerances.faces.empty() || !tolerances.features.empty()) detail::judge_tolerances(tolerances, result);
   result.ok = result.assigned > 0;
   result.termination = result.ok ? "ok" : "no scan point lies on a face of the CAD (is the scan in the part frame?)";
   write_faces(options, result);

@@ -25,6 +25,8 @@ CsvWriter faces_csv(const InspectResult& result) {
     const bool cylinder = f.fitted && f.nominal.type == CadSurfaceType::kCylinder;
     const bool sphere = f.fitted && f.nominal.type == CadSurfaceType::kSphere;
     const bool plane = f.fitted && f.nominal.type == CadSurfaceType::kPlane;
+    const bool cone = f.fitted && f.nominal.type == CadSurfaceType::kCone;
+    const bool torus = f.fitted && f.nominal.type == CadSurfaceType::kTorus;
     csv.cell(static_cast<std::int64_t>(f.id)).cell(to_string(f.nominal.type));
     csv.cell(static_cast<std::int64_t>(f.points)).cell(f.exact ? "exact surface" : "mesh");
     for (int k = 0; k < 3; ++k) number_or_empty(csv, seen, f.centroid_mm[k]);
@@ -34,11 +36,13 @@ CsvWriter faces_csv(const InspectResult& result) {
     number_or_empty(csv, seen, f.deviation.max_mm);
     number_or_empty(csv, f.form_measured, f.form.width_mm);
     csv.cell(f.form_measured ? f.form_reference : "");
-    number_or_empty(csv, cylinder || sphere, f.radius_mm);
-    number_or_empty(csv, f.nominal.type == CadSurfaceType::kCylinder || f.nominal.type == CadSurfaceType::kSphere,
-                    f.nominal.radius_mm);
-    number_or_empty(csv, cylinder, f.axis_offset_mm);
-    number_or_empty(csv, cylinder, f.axis_angle_deg);
+    number_or_empty(csv, cylinder || sphere || cone || torus, f.radius_mm);
+    const CadSurfaceType t = f.nominal.type;
+    number_or_empty(csv,
+                    cone || t == CadSurfaceType::kCylinder || t == CadSurfaceType::kSphere || t == CadSurfaceType::kTorus,
+                    f.nominal_radius_mm);
+    number_or_empty(csv, cylinder || cone, f.axis_offset_mm);
+    number_or_empty(csv, cylinder || cone || torus, f.axis_angle_deg);
     number_or_empty(csv, cylinder, f.position_mm);
     number_or_empty(csv, cylinder, f.perpendicularity_mm);
     number_or_empty(csv, plane, f.angle_to_nominal_deg);

@@ -6,12 +6,12 @@
 
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
+#include "conform/evaluation/revolved_fit.h"
 #include "conform/fitting/cylinder.h"
 
 namespace conform::detail {
 
 namespace {
-
 
 double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of the cross and dot products: accurate at small angles, where acos of the dot loses half its digits.
@@ -109,12 +109,65 @@ void measure_sphere(const std::vector<Eigen::Vector3d>& points, const InspectOpt
   face.form = form_zone(residuals, options.form_trim);
 }
 
+// The least-squares cone from the nominal (evaluation/revolved_fit.h): its half-angle, axis, apex, and at the
+// nominal's middle section (the nominal axis point nearest the face's centre) the axis offset and both radii.
+void measure_cone(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
+  const CadFace& nominal = face.nominal;
+  const ConeFit fit = fit_cone(points, nominal.origin_mm, nominal.axis, nominal.half_angle_rad);
+  if (!fit.ok) {
+    face.fit_note = "cone fit: the points do not determine a cone (too narrow a band, or no convergence)";
+    return;
+  }
+  face.fitted = true;
+  face.axis = fit.axis;
+  face.axis_angle_deg = angle_deg(fit.axis, nominal.axis);
+  face.half_angle_deg = degrees(fit.half_angle_rad);
+  face.apex_mm = fit.apex;
+  const Eigen::Vector3d middle = nominal.origin_mm + (nominal.centre_mm - nominal.origin_mm).dot(nominal.axis) *
+                                                         nominal.axis;
+  const double along = (middle - fit.axis_point).dot(fit.axis);
+  face.axis_point_mm = fit.axis_point + along * fit.axis;
+  face.axis_offset_mm = (middle - face.axis_point_mm).norm();
+  face.radius_mm = fit.radius_mm + along * std::tan(fit.half_angle_rad);
+  face.nominal_radius_mm = (middle - nominal.origin_mm).norm() * std::tan(nominal.half_angle_rad);
+  std::vector<double> residuals;
+  residuals.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) residuals.push_back(cone_distance(fit, p));
+  face.form_measured = true;
+  face.form_reference = "least-squares cone";
+  face.form = form_zone(residuals, options.form_trim);
+}
+
+void measure_torus(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
+  const CadFace& nominal = face.nominal;
+  const TorusFit fit =
+      fit_torus(points, nominal.origin_mm, nominal.axis, nominal.radius_mm, nominal.minor_radius_mm);
+  if (!fit.ok) {
+    face.fit_note = "torus fit: the points do not determine a torus (too small a patch, or no convergence)";
+    return;
+  }
+  face.fitted = true;
+  face.axis = fit.axis.dot(nominal.axis) >= 0.0 ? fit.axis : Eigen::Vector3d(-fit.axis);
+  face.axis_angle_deg = angle_deg(face.axis, nominal.axis);
+  face.centre_mm = fit.centre;
+  face.centre_offset_mm = (fit.centre - nominal.origin_mm).norm();
+  face.radius_mm = fit.major_radius_mm;
+  face.minor_radius_mm = fit.minor_radius_mm;
+  std::vector<double> residuals;
+  residuals.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) residuals.push_back(torus_distance(fit, p));
+  face.form_measured = true;
+  face.form_reference = "least-squares torus";
+  face.form = form_zone(residuals, options.form_trim);
+}
+
 }  // namespace
 
 void measure_face(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
                   const std::vector<double>& deviation_mm, const InspectOptions& options, FaceInspection& face) {
   face.points = points.size();
   face.exact = is_analytic(face.nominal.type);
+  face.nominal_radius_mm = face.nominal.radius_mm;
   face.deviation = deviation_statistics(deviation_mm);
   if (points.empty()) return;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -127,6 +180,8 @@ void measure_face(const std::vector<Eigen::Vector3d>& points, const std::vector<
   if (face.nominal.type == CadSurfaceType::kPlane) measure_plane(points, options, face);
   if (face.nominal.type == CadSurfaceType::kCylinder) measure_cylinder(points, normals, options, face);
   if (face.nominal.type == CadSurfaceType::kSphere) measure_sphere(points, options, face);
+  if (face.nominal.type == CadSurfaceType::kCone) measure_cone(points, options, face);
+  if (face.nominal.type == CadSurfaceType::kTorus) measure_torus(points, options, face);
   if (!face.form_measured) {
     // No feature fitted (another surface, or the fit failed): the zone of the deviations from the nominal surface,
     // which holds the feature's size and position errors as well as its form.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/common/cad_json.h"
 #include "conform/pipelines/common/json_values.h"
 
@@ -29,7 +30,7 @@ nlohmann::json nominal_json(const CadFace& f) {
     case CadSurfaceType::kCone:
       j["apex_mm"] = json_of(f.origin_mm);
       j["axis"] = json_of(f.axis);
-      j["half_angle_deg"] = f.half_angle_rad * 57.29577951308232;
+      j["half_angle_deg"] = degrees(f.half_angle_rad);
       j["hole"] = f.sense < 0;
       break;
     case CadSurfaceType::kSphere:
@@ -100,6 +101,27 @@ nlohmann::json face_json(const FaceInspection& f) {
     j["centre_mm"] = json_of(f.centre_mm, !f.fitted);
     j["centre_offset_mm"] = number_or_null(f.fitted, f.centre_offset_mm);
   }
+  if (f.nominal.type == CadSurfaceType::kCone) {
+    j["nominal_half_angle_deg"] = degrees(f.nominal.half_angle_rad);
+    j["half_angle_deg"] = number_or_null(f.fitted, f.half_angle_deg);
+    j["apex_mm"] = json_of(f.apex_mm, !f.fitted);
+    j["axis"] = json_of(f.axis, !f.fitted);
+    j["axis_point_mm"] = json_of(f.axis_point_mm, !f.fitted);
+    j["axis_offset_mm"] = number_or_null(f.fitted, f.axis_offset_mm);
+    j["axis_angle_deg"] = number_or_null(f.fitted, f.axis_angle_deg);
+    j["radius_mm"] = number_or_null(f.fitted, f.radius_mm);
+    j["nominal_radius_mm"] = number_or_null(f.fitted, f.nominal_radius_mm);
+  }
+  if (f.nominal.type == CadSurfaceType::kTorus) {
+    j["nominal_radius_mm"] = f.nominal.radius_mm;
+    j["nominal_minor_radius_mm"] = f.nominal.minor_radius_mm;
+    j["radius_mm"] = number_or_null(f.fitted, f.radius_mm);
+    j["minor_radius_mm"] = number_or_null(f.fitted, f.minor_radius_mm);
+    j["centre_mm"] = json_of(f.centre_mm, !f.fitted);
+    j["centre_offset_mm"] = number_or_null(f.fitted, f.centre_offset_mm);
+    j["axis"] = json_of(f.axis, !f.fitted);
+    j["axis_angle_deg"] = number_or_null(f.fitted, f.axis_angle_deg);
+  }
   if (f.nominal.type == CadSurfaceType::kPlane) {
     j["normal"] = json_of(f.normal, !f.fitted);
     j["angle_to_nominal_deg"] = number_or_null(f.fitted, f.angle_to_nominal_deg);
@@ -108,9 +130,32 @@ nlohmann::json face_json(const FaceInspection& f) {
   return j;
 }
 
+nlohmann::json feature_json(const FeatureInspection& f) {
+  nlohmann::json j = face_json(f.measured);
+  j["kind"] = f.measured.nominal.sense < 0 ? "hole" : "boss";
+  j["faces"] = f.faces;
+  j["nominal_diameter_mm"] = 2.0 * f.measured.nominal.radius_mm;
+  if (f.verdict) {
+    const FeatureVerdict& v = *f.verdict;
+    const auto limit = [](const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
+    const auto verdict = [&](bool pass) { return v.measured ? nlohmann::json(pass) : nlohmann::json(nullptr); };
+    j["tolerance"] = {{"face", v.tolerance.face_id},
+                      {"diameter_lower_mm", limit(v.tolerance.diameter_lower_mm)},
+                      {"diameter_upper_mm", limit(v.tolerance.diameter_upper_mm)},
+                      {"position_mm", limit(v.tolerance.position_mm)},
+                      {"measured", v.measured},
+                      {"size_pass", verdict(v.size_pass)},
+                      {"position_pass", verdict(v.position_pass)},
+                      {"pass", verdict(v.pass)}};
+  }
+  return j;
+}
+
 nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& r, const std::string& units) {
   nlohmann::json faces = nlohmann::json::array();
   for (const FaceInspection& f : r.faces) faces.push_back(face_json(f));
+  nlohmann::json features = nlohmann::json::array();
+  for (const FeatureInspection& f : r.features) features.push_back(feature_json(f));
   nlohmann::json j = {{"scan", options.scan_path},
                       {"reference", options.reference_path},
                       {"transform", json_path_or_null(options.transform_path)},
@@ -126,17 +171,19 @@ nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& 
                       {"scan_noise_mm", r.scan_noise_mm},
                       {"max_distance_mm", r.max_distance_mm},
                       {"max_distance_automatic", r.max_distance_automatic},
-                      {"max_normal_angle_deg", options.max_normal_angle_rad * 57.29577951308232},
+                      {"max_normal_angle_deg", degrees(options.max_normal_angle_rad)},
                       {"form_definition",
-                       "width of the zone about the least-squares feature (plane, cylinder; else the nominal surface) "
+                       "width of the zone about the least-squares feature (plane, cylinder, cone, sphere, torus; else, or "
+                       "where the fit fails, the nominal surface) "
                        "holding all but form_trim of the residuals, half trimmed at each end; form_full_mm untrimmed"},
                       {"faces", faces},
+                      {"features", features},
                       {"out_faces", json_path_or_null(r.out_faces_path)}};
   if (!options.datum_faces.empty()) {
     j["datums"] = {{"faces", options.datum_faces},
                    {"T_datum_initial", json_of(r.T_datum_initial)},
                    {"moved_mm", r.datum_moved_mm},
-                   {"rotation_deg", Eigen::AngleAxisd(r.T_datum_initial.linear()).angle() * 57.29577951308232}};
+                   {"rotation_deg", degrees(Eigen::AngleAxisd(r.T_datum_initial.linear()).angle())}};
   } else {
     j["datums"] = nullptr;
   }

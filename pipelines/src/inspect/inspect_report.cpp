@@ -1,8 +1,10 @@
 #include "conform/pipelines/inspect/inspect_report.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "conform/core/constants.h"
 #include "conform/pipelines/common/deviation_view.h"
 
 namespace conform {
@@ -30,6 +32,16 @@ std::string feature_text(const FaceInspection& f) {
   if (f.fitted && f.nominal.type == CadSurfaceType::kSphere) {
     std::snprintf(text, sizeof text, "radius %.4f (nominal %.4f) mm, centre offset %.4f mm", f.radius_mm,
                   f.nominal.radius_mm, f.centre_offset_mm);
+    return text;
+  }
+  if (f.fitted && f.nominal.type == CadSurfaceType::kCone) {
+    std::snprintf(text, sizeof text, "half-angle %.4f (nominal %.4f) deg, axis offset %.4f mm", f.half_angle_deg,
+                  degrees(f.nominal.half_angle_rad), f.axis_offset_mm);
+    return text;
+  }
+  if (f.fitted && f.nominal.type == CadSurfaceType::kTorus) {
+    std::snprintf(text, sizeof text, "radii %.4f / %.4f (nominal %.4f / %.4f) mm, centre offset %.4f mm", f.radius_mm,
+                  f.minor_radius_mm, f.nominal.radius_mm, f.nominal.minor_radius_mm, f.centre_offset_mm);
     return text;
   }
   if (f.fitted && f.nominal.type == CadSurfaceType::kPlane) {
@@ -63,6 +75,39 @@ html::Table faces_table(const InspectResult& r) {
                   : !f.verdict->measured ? "not measured"
                   : f.verdict->pass      ? "pass"
                                          : "FAIL");
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+html::Table features_table(const InspectResult& r) {
+  html::Table t;
+  t.title = "Holes and bosses";
+  t.header = {"feature", "kind", "faces", "points", "diameter mm", "nominal mm", "position mm", "perpendicularity mm",
+              "cylindricity mm", "verdict"};
+  for (std::size_t k = 0; k < r.features.size(); ++k) {
+    const FeatureInspection& feature = r.features[k];
+    const FaceInspection& f = feature.measured;
+    const std::string at = "/features/" + std::to_string(k) + "/";
+    std::string faces;
+    for (const std::size_t id : feature.faces) faces += (faces.empty() ? "" : " ") + std::to_string(id);
+    std::vector<html::Cell> row = {html::count(feature.id, at + "id"), f.nominal.sense < 0 ? "hole" : "boss", faces,
+                                   html::count(f.points, at + "points")};
+    if (f.fitted) {
+      row.push_back(html::number(2.0 * f.radius_mm, 4, at + "diameter_mm"));
+      row.push_back(html::number(2.0 * f.nominal.radius_mm, 4, at + "nominal_diameter_mm"));
+      row.push_back(html::number(f.position_mm, 4, at + "position_mm"));
+      row.push_back(std::isfinite(f.perpendicularity_mm) ? html::number(f.perpendicularity_mm, 4,
+                                                                        at + "perpendicularity_mm")
+                                                         : html::Cell("-"));
+      row.push_back(html::number(f.form.width_mm, 4, at + "form_mm"));
+    } else {
+      row.insert(row.end(), 5, html::Cell(f.fit_note.empty() ? "-" : f.fit_note));
+    }
+    row.push_back(!feature.verdict            ? "-"
+                  : !feature.verdict->measured ? "not measured"
+                  : feature.verdict->pass      ? "pass"
+                                               : "FAIL");
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -143,6 +188,7 @@ html::Page inspect_report(const InspectOptions& options, const InspectResult& r,
       "but the trimmed share of the residuals (docs/inspect.md). In the view each measured face is a layer of its own "
       "(red: fails its tolerances, shown; green: passes; grey: not toleranced).");
   faces.tables.push_back(faces_table(r));
+  if (!r.features.empty()) faces.tables.push_back(features_table(r));
   page.sections.push_back(std::move(faces));
   return page;
 }

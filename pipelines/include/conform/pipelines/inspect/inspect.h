@@ -78,6 +78,22 @@ struct FaceVerdict {
   bool pass = false;
 };
 
+// A feature's limits (--tolerances, on a row naming one of its faces); an empty one is not toleranced.
+struct FeatureTolerance {
+  std::size_t face_id = 0;                  // the row's face, one of the feature's
+  std::optional<double> diameter_lower_mm;  // the fitted diameter >= this
+  std::optional<double> diameter_upper_mm;  // the fitted diameter <= this
+  std::optional<double> position_mm;        // position_mm (a diameter zone about the nominal axis) <= this
+};
+
+struct FeatureVerdict {
+  FeatureTolerance tolerance;
+  bool measured = false;  // false: no fitted cylinder (too few points, or the fit failed): no verdict
+  bool size_pass = false;
+  bool position_pass = false;
+  bool pass = false;
+};
+
 // One CAD face as measured.
 struct FaceInspection {
   std::size_t id = 0;  // 1-based, the face's place in the file (bodies in order)
@@ -100,14 +116,18 @@ struct FaceInspection {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // plane: fitted, oriented like the nominal (outward)
   double angle_to_nominal_deg = 0.0;                 // plane: between fitted and nominal normals
   double plane_offset_mm = 0.0;  // plane: the fitted plane's distance from the nominal at the face's centre, + out
-  double radius_mm = 0.0;        // cylinder, sphere: fitted
-  Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // sphere: fitted centre
-  double centre_offset_mm = 0.0;  // sphere: from the nominal centre
+  double radius_mm = 0.0;        // cylinder, sphere: fitted; torus: major; cone: at the nominal's middle section
+  double nominal_radius_mm = 0.0;  // cone: the nominal's radius at that section (else the nominal's radius)
+  Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  // sphere, torus: fitted centre
+  double centre_offset_mm = 0.0;  // sphere, torus: from the nominal centre
+  double minor_radius_mm = 0.0;   // torus: fitted
+  double half_angle_deg = 0.0;    // cone: fitted
+  Eigen::Vector3d apex_mm = Eigen::Vector3d::Zero();  // cone: fitted
   double radius_std_mm = 0.0;    // cylinder: its standard deviation from the fit (fitting/cylinder.h)
-  Eigen::Vector3d axis = Eigen::Vector3d::Zero();        // cylinder: fitted, oriented like the nominal axis
-  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder: the fitted axis's point nearest the nominal's
-  double axis_offset_mm = 0.0;   // cylinder: from the nominal axis point at the face's middle to the fitted axis
-  double axis_angle_deg = 0.0;   // cylinder: between the fitted and the nominal axis
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();        // cylinder, cone, torus: fitted, oriented like the nominal
+  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder, cone: the fitted axis's point nearest the nominal's
+  double axis_offset_mm = 0.0;   // cylinder, cone: from the nominal axis point at the face's middle to the fitted axis
+  double axis_angle_deg = 0.0;   // cylinder, cone, torus: between the fitted and the nominal axis
   double length_mm = 0.0;        // cylinder: the span of its points along the fitted axis
   // cylinder: twice the larger distance of the fitted axis's ends (at the points' span) from the nominal axis: the
   // diameter of the smallest zone about the nominal axis holding the fitted axis (ISO 1101 position, in the frame of
@@ -118,6 +138,16 @@ struct FaceInspection {
   double perpendicularity_mm = std::numeric_limits<double>::quiet_NaN();
 
   std::optional<FaceVerdict> verdict;  // with --tolerances, for the faces it names
+};
+
+// A hole or boss: the cylindrical faces on one cylinder (a CAD kernel may split one into two or more faces;
+// pipelines/src/inspect/inspect_feature_groups.h), measured as one on all their points. `measured` holds the figures
+// of a cylinder face (its nominal the merged faces'); with --datums, in the datum frame.
+struct FeatureInspection {
+  std::size_t id = 0;              // 1-based, in the order of the features' first faces
+  std::vector<std::size_t> faces;  // its face ids, ascending
+  FaceInspection measured;
+  std::optional<FeatureVerdict> verdict;  // with --tolerances naming one of its faces with a size or position limit
 };
 
 struct InspectResult {
@@ -139,6 +169,7 @@ struct InspectResult {
   bool ok = false;                   // the job ran to its figures (false: best fit refused, or no point assigned)
   std::string termination;           // "ok", or why not
   std::vector<FaceInspection> faces;   // every face of the CAD, by id
+  std::vector<FeatureInspection> features;  // every hole and boss (cylinder) of the CAD, measured or not
   std::vector<std::size_t> point_face;  // per scan point: its face's id, 0 for none
   std::vector<double> deviation_mm;     // per scan point: its deviation from its face, NaN for none
   std::vector<std::string> warnings;

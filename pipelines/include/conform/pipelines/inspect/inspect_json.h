@@ -12,5 +12,8 @@ namespace conform {
 nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& result, const std::string& units);
 // One face's object of the `faces` array.
 nlohmann::json face_json(const FaceInspection& face);
+// One hole's or boss's object of the `features` array: its cylinder's figures as face_json gives them, with `kind`
+// ("hole", "boss"), `faces` (its face ids), `nominal_diameter_mm` and, with --tolerances, `tolerance`.
+nlohmann::json feature_json(const FeatureInspection& feature);
 
 }  // namespace conform
