@@ -93,10 +93,11 @@ class AlignCommand : public Command {
     c.add_option("--max-iterations", options_.max_iterations, "ICP iterations at most");
     c.add_option("--pose-tolerance-mm", options_.pose_tolerance_mm,
                  "The accuracy asked of the pose, mm: the largest predicted std of any scan point's displacement "
-                 "(from the residuals, the surface's constraint and, against a cloud, the fit's bias); a pose from "
+                 "(from the residuals, the surface's constraint and, against a cloud, the fit's bias and the normals' "
+                 "model); a pose from "
                  "--init pca/fpfh that misses it is refused (exit 1), one from a start you gave is 'check'; 0: a sixth "
-                 "of --tolerance when given, else sqrt(3) times the noise of the scan or of the fit, whichever is "
-                 "larger (at least 0.02 mm)");
+                 "of --tolerance when given, else 2.7 times (against a mesh sqrt(3) times) the noise of the scan or of "
+                 "the fit, whichever is larger (at least 0.02 mm)");
     c.add_option("--tolerance", options_.tolerance_mm,
                  "The inspection tolerance +-mm the pose serves (as compare --tolerance); sets the default "
                  "--pose-tolerance-mm; 0: not stated");

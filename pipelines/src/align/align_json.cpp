@@ -109,6 +109,7 @@ nlohmann::json align_json(const AlignResult& r) {
                       {"noise_mm", c.noise_mm},
                       {"pose_std", pose_std_json(c)},
                       {"inverse_consistency_mm", r.inverse_consistency_mm},
+                      {"normal_model_mm", r.normal_model_mm},
                       {"pose_covariance", covariance_json(c)},
                       {"covariance_centre_mm", json_of(c.centre)},
                       {"constraint_directions", constraint_json(c)},

@@ -78,9 +78,9 @@ struct AlignOptions {
   // The accuracy asked of the pose: the largest predicted displacement std of any scan point
   // (registration/degeneracy.h, largest_displacement_std_mm; against a cloud with the fit's bias, AlignVerdict), mm.
   // 0: from the data and the job: tolerance_mm / 6 when the inspection tolerance is stated (three std use at most
-  // half of it), else sqrt(3) times the larger of the scan's own noise and the fit's residual noise, taken as at least
-  // 0.02 mm (align_verdict.cpp). A pose from --init pca/fpfh that misses it is refused, one from a start the user
-  // gave is "check".
+  // half of it), else 2.7 times (against a mesh sqrt(3) times) the larger of the scan's own noise and the fit's
+  // residual noise, taken as at least 0.02 mm (align_verdict.cpp). A pose from --init pca/fpfh that misses it is
+  // refused, one from a start the user gave is "check".
   double pose_tolerance_mm = 0.0;
   // The inspection tolerance +-t the pose serves (what compare --tolerance will check), mm; 0: not stated.
   double tolerance_mm = 0.0;
@@ -116,8 +116,9 @@ struct AlignVerdict {
   double fit_noise_mm = 0.0;         // the residuals' robust std at the result (icp.degeneracy.noise_mm)
   double noise_ratio = 0.0;          // fit / expected
   double overlap = 0.0;              // the share of the scan within the maximum distance and kept (inlier fraction)
-  // The largest predicted displacement std of a scan point (estimated motions), with the inverse-consistency bias
-  // (AlignResult::inverse_consistency_mm) added in quadrature against a cloud reference.
+  // The largest predicted displacement std of a scan point (estimated motions), with the inverse-consistency and
+  // normal-model biases (AlignResult::inverse_consistency_mm, normal_model_mm) added in quadrature against a cloud
+  // reference.
   double pose_std_mm = 0.0;
   double pose_tolerance_mm = 0.0;    // what was asked of it (AlignOptions::pose_tolerance_mm, resolved)
   std::vector<std::string> reasons;  // why not kYes, one sentence each
@@ -137,6 +138,10 @@ struct AlignResult {
   // roles swapped (the inverse-consistency check, a measure of the fit's bias; added to icp.degeneracy's
   // covariance), mm; 0 against a mesh, -1 when the swapped fit did not converge.
   double inverse_consistency_mm = 0.0;
+  // Against a cloud reference: the largest displacement of a scan point between the fit and the same fit against
+  // the reference's normals taken over a wider neighbourhood (the normal-model spread, a measure of the model's own
+  // uncertainty; added to icp.degeneracy's covariance), mm; 0 against a mesh, -1 when that fit did not converge.
+  double normal_model_mm = 0.0;
   std::size_t scan_points = 0;                                // read (finite)
   std::size_t scan_points_used = 0;                           // after merging duplicates and thinning
   std::size_t reference_points = 0;
