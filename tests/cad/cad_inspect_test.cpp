@@ -28,6 +28,7 @@
 #include "conform/pipelines/inspect/inspect.h"
 #include "conform/pipelines/inspect/inspect_json.h"
 #include "conform/pipelines/inspect/inspect_report.h"
+#include "inspect_scans.h"
 #include "report_page_checks.h"
 #include "run_command.h"
 #include "temp_dir.h"
@@ -111,20 +112,8 @@ GeneratedScan generate(const TopoDS_Shape& part, const CadFaces& cad) {
   return scan;
 }
 
-double mean(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (const double x : v) sum += x;
-  return sum / static_cast<double>(v.size());
-}
-
-// The points as a cloud .ply in double precision (the scan's coordinates to the last bit).
-void write_scan(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
-  Mesh cloud;
-  cloud.vertices = points;
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(path, cloud, precise);
-}
+using test::write_scan;
+const auto& mean = test::mean_of;
 
 // run_inspect on `scan` against `step` in the part frame, with the defaults.
 InspectResult inspect_in_part_frame(const std::string& scan, const std::string& step) {
