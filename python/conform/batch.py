@@ -16,7 +16,10 @@ parts done with the same job, options and inputs (resume) and runs the others ag
 DIR/inspect_faces.csv gets one row per CAD face across those parts (statistical process control): the parts that
 measured it, the mean, standard deviation (n - 1), min and max of its per-part mean deviation, its form's mean and
 max, a cylinder's radius mean and standard deviation, and with tolerances Cp and Cpk of the mean deviation and Cpk of
-the form (one-sided).
+the form (one-sided). DIR/inspect_features.csv gets one row per hole or boss (the JSON's `features`: the cylindrical
+faces on one cylinder) across those parts: the same deviation figures, the diameter's mean, standard deviation, min
+and max, the position's mean and max, and with size or position limits Cp and Cpk of the diameter and Cpk of the
+position (one-sided).
 """
 
 import argparse
@@ -51,6 +54,7 @@ INPUTS = {"scan", "reference", "transform", "tolerances", "input", "transform_a"
           "contour", "trajectory", "surface", "truth", "path", "frame"}
 DEFAULT_PART_TIMEOUT_S = 3600.0
 FACES_CSV = "inspect_faces.csv"  # in DIR: the inspect parts' faces across parts
+FEATURES_CSV = "inspect_features.csv"  # in DIR: the inspect parts' holes and bosses across parts
 STATE_DIR = ".conform-batch"  # in DIR: the resume key of each part done (<id>.key)
 _RESULT = "conform.batch result: "  # the line a part's process prints its summary row on
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
@@ -394,9 +398,13 @@ def run_batch(manifest, out_dir, client, part_timeout=DEFAULT_PART_TIMEOUT_S, pa
                 summary[spec["id"]] = summary_row(spec["id"], spec["job"], None, f"{type(e).__name__}: {e}")
     ordered = [summary[part_id] for part_id, _, _ in parts]
     write_summary(os.path.join(out_dir, "summary.csv"), ordered)
-    faces = inspect_face_statistics([row for row in ordered if row["job"] == "inspect" and row["ok"]], out_dir)
+    inspected = [row for row in ordered if row["job"] == "inspect" and row["ok"]]
+    faces = inspect_face_statistics(inspected, out_dir)
     if faces:
         write_summary(os.path.join(out_dir, FACES_CSV), faces)
+    features = inspect_feature_statistics(inspected, out_dir)
+    if features:
+        write_summary(os.path.join(out_dir, FEATURES_CSV), features)
     return ordered
 
 
@@ -415,20 +423,53 @@ def _capability(values, lower, upper):
     return cp, cpk
 
 
-def inspect_face_statistics(rows, out_dir):
-    """One row per CAD face over the inspect parts of `rows` (read from their DIR/<id>.json): the module docstring's
-    figures. Faces are matched by id (the parts are inspected against the same CAD)."""
-    per_face = {}
+def _inspected(rows, out_dir, key):
+    """Per id, the objects of the JSON array `key` ("faces", "features") over the inspect parts of `rows` (read from
+    their DIR/<id>.json), in part order. Matched by id: the parts are inspected against the same CAD."""
+    per_id = {}
     for row in rows:
         text = _read_small(os.path.join(out_dir, f"{row['id']}.json"))
         if text is None:
             continue
-        for face in json.loads(text).get("faces", []):
-            per_face.setdefault(face["id"], []).append(face)
+        for item in json.loads(text).get(key, []):
+            per_id.setdefault(item["id"], []).append(item)
+    return per_id
+
+
+def _mean(values):
+    return sum(values) / len(values) if values else None
+
+
+def _std(values):
+    """The n - 1 standard deviation; None for fewer than two values."""
+    if len(values) < 2:
+        return None
+    mean = _mean(values)
+    return (sum((x - mean) ** 2 for x in values) / (len(values) - 1)) ** 0.5
+
+
+def _deviation_figures(measured):
+    """The deviation figures faces and features share: over the parts that measured it, the mean and standard
+    deviation of the per-part mean deviation, the min and max deviation, the form's mean and max."""
+    means = [f["mean_mm"] for f in measured]
+    forms = [f["form_mm"] for f in measured if f.get("form_mm") is not None]
+    return {"parts": len(measured), "mean_mm": _mean(means), "std_mm": _std(means),
+            "min_mm": min((f["min_mm"] for f in measured), default=None),
+            "max_mm": max((f["max_mm"] for f in measured), default=None), "form_mean_mm": _mean(forms),
+            "form_max_mm": max(forms, default=None)}
+
+
+def _measured(items):
+    return [f for f in items if f.get("points", 0) > 0 and f.get("mean_mm") is not None]
+
+
+def inspect_face_statistics(rows, out_dir):
+    """One row per CAD face over the inspect parts of `rows`: the module docstring's figures."""
+    per_face = _inspected(rows, out_dir, "faces")
     out = []
     for face_id in sorted(per_face):
         faces = per_face[face_id]
-        measured = [f for f in faces if f.get("points", 0) > 0 and f.get("mean_mm") is not None]
+        measured = _measured(faces)
         means = [f["mean_mm"] for f in measured]
         forms = [f["form_mm"] for f in measured if f.get("form_mm") is not None]
         radii = [f["radius_mm"] for f in measured if f.get("radius_mm") is not None]
@@ -436,19 +477,40 @@ def inspect_face_statistics(rows, out_dir):
         lower, upper, form_limit = tolerance.get("lower_mm"), tolerance.get("upper_mm"), tolerance.get("form_mm")
         cp, cpk = _capability(means, lower, upper)
         _, form_cpk = _capability(forms, None, form_limit) if form_limit is not None else (None, None)
-
-        def std(v):
-            return (sum((x - sum(v) / len(v)) ** 2 for x in v) / (len(v) - 1)) ** 0.5 if len(v) > 1 else None
-
         out.append({"id": face_id, "job": "inspect", "ok": bool(measured), "type": faces[0]["type"],
-                    "parts": len(measured), "mean_mm": sum(means) / len(means) if means else None,
-                    "std_mm": std(means), "min_mm": min((f["min_mm"] for f in measured), default=None),
-                    "max_mm": max((f["max_mm"] for f in measured), default=None),
-                    "form_mean_mm": sum(forms) / len(forms) if forms else None,
-                    "form_max_mm": max(forms, default=None),
-                    "radius_mean_mm": sum(radii) / len(radii) if radii else None, "radius_std_mm": std(radii),
+                    **_deviation_figures(measured),
+                    "radius_mean_mm": _mean(radii), "radius_std_mm": _std(radii),
                     "lower_mm": lower, "upper_mm": upper, "form_limit_mm": form_limit, "cp": cp, "cpk": cpk,
                     "form_cpk": form_cpk, "error": "" if measured else "no part measured it"})
+    return out
+
+
+def inspect_feature_statistics(rows, out_dir):
+    """One row per hole or boss over the inspect parts of `rows`: the module docstring's figures. A feature's size
+    and position are those of its fitted cylinder; a part whose fit failed counts for its deviation, not its size."""
+    per_feature = _inspected(rows, out_dir, "features")
+    out = []
+    for feature_id in sorted(per_feature):
+        features = per_feature[feature_id]
+        measured = _measured(features)
+        fitted = [f for f in measured if f.get("diameter_mm") is not None]
+        diameters = [f["diameter_mm"] for f in fitted]
+        positions = [f["position_mm"] for f in fitted if f.get("position_mm") is not None]
+        tolerance = next((f["tolerance"] for f in features if f.get("tolerance")), None) or {}
+        lower, upper = tolerance.get("diameter_lower_mm"), tolerance.get("diameter_upper_mm")
+        position_limit = tolerance.get("position_mm")
+        cp, cpk = _capability(diameters, lower, upper)
+        _, position_cpk = _capability(positions, None, position_limit) if position_limit is not None else (None, None)
+        first = features[0]
+        out.append({"id": feature_id, "job": "inspect", "ok": bool(fitted), "kind": first.get("kind"),
+                    "faces": "+".join(str(f) for f in first.get("faces", [])), **_deviation_figures(measured),
+                    "fitted_parts": len(fitted), "nominal_diameter_mm": first.get("nominal_diameter_mm"),
+                    "diameter_mean_mm": _mean(diameters), "diameter_std_mm": _std(diameters),
+                    "diameter_min_mm": min(diameters, default=None), "diameter_max_mm": max(diameters, default=None),
+                    "position_mean_mm": _mean(positions), "position_max_mm": max(positions, default=None),
+                    "diameter_lower_mm": lower, "diameter_upper_mm": upper, "position_limit_mm": position_limit,
+                    "cp": cp, "cpk": cpk, "position_cpk": position_cpk,
+                    "error": "" if fitted else ("no part fitted it" if measured else "no part measured it")})
     return out
 
 

@@ -58,10 +58,16 @@ def test_bad_options_name_the_keyword_argument(scan):
         conform.inspect(scan, CYLINDER, datums=[7])
 
 
-def test_batch_gives_each_face_across_parts_with_its_capability(tmp_path):
+def test_batch_gives_each_face_and_feature_across_parts_with_their_capability(tmp_path):
     """Three parts 0.02, 0.03 and 0.04 mm oversize: face 1's mean deviation over the parts is 0.03 mm with a standard
-    deviation of 0.01 (n - 1), so against +-0.05 Cp = 0.1 / 0.06 = 1.67 and Cpk = 0.02 / 0.03 = 0.67."""
+    deviation of 0.01 (n - 1), so against +-0.05 Cp = 0.1 / 0.06 = 1.67 and Cpk = 0.02 / 0.03 = 0.67. The side as a
+    feature (a boss of one face): diameters 30.04, 30.06, 30.08, s = 0.02, so against 29.9..30.1 Cp = 0.2 / 0.12 =
+    1.67 and Cpk = 0.04 / 0.06 = 0.67."""
     from conform import batch
+
+    limits = tmp_path / "limits.csv"
+    limits.write_text("face,lower_mm,upper_mm,form_mm,diameter_lower_mm,diameter_upper_mm,position_mm\n"
+                      "1,-0.05,0.05,0.05,29.9,30.1,0.05\n")
 
     # In the part frame (no best fit: over a half turn it would move the scan across the axis and take up part of
     # the oversize).
@@ -70,7 +76,7 @@ def test_batch_gives_each_face_across_parts_with_its_capability(tmp_path):
         scan = tmp_path / f"scan{k}.ply"
         cli("generate", "tube", "--out", scan, "--radius", 15 + oversize, "--length", 40, "--axis-point", "0,0,20",
             "--arc-deg", 180, "--edge", 0.5, "--noise", 0.005, "--seed", k + 1, "--quiet")
-        rows.append([f"part{k}", "inspect", scan.name, str(CYLINDER), str(LIMITS)])
+        rows.append([f"part{k}", "inspect", scan.name, str(CYLINDER), str(limits)])
     manifest = tmp_path / "parts.csv"
     manifest.write_text("\n".join(",".join(r) for r in rows) + "\n")
     summary = batch.run_batch(manifest, tmp_path / "out", None)
@@ -85,3 +91,19 @@ def test_batch_gives_each_face_across_parts_with_its_capability(tmp_path):
     assert float(side["cp"]) == pytest.approx(1.667, rel=0.1)
     assert float(side["cpk"]) == pytest.approx(0.667, rel=0.1)
     assert int(faces["2"]["parts"]) == 0 and faces["2"]["error"] == "no part measured it"  # a cap, never scanned
+    with open(tmp_path / "out" / "inspect_features.csv", newline="") as f:
+        features = list(__import__("csv").DictReader(f))
+    assert len(features) == 1, features
+    boss = features[0]
+    assert boss["kind"] == "boss" and boss["faces"] == "1" and int(boss["fitted_parts"]) == 3
+    assert float(boss["nominal_diameter_mm"]) == 30.0
+    assert float(boss["mean_mm"]) == pytest.approx(float(side["mean_mm"]), abs=1e-12)  # one face: the face's figures
+    assert float(boss["diameter_mean_mm"]) == pytest.approx(30.06, abs=0.002)
+    assert float(boss["diameter_std_mm"]) == pytest.approx(0.02, abs=0.002)
+    assert float(boss["diameter_min_mm"]) == pytest.approx(30.04, abs=0.002)
+    assert float(boss["diameter_max_mm"]) == pytest.approx(30.08, abs=0.002)
+    assert float(boss["cp"]) == pytest.approx(1.667, rel=0.1)
+    assert float(boss["cpk"]) == pytest.approx(0.667, rel=0.1)
+    assert float(boss["position_max_mm"]) < 0.01  # in the part frame, the axis where it should be
+    assert float(boss["position_cpk"]) > 1.0
+    assert boss["position_limit_mm"] == "0.05" and boss["diameter_lower_mm"] == "29.9"
