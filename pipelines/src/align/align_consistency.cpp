@@ -39,20 +39,18 @@ FitDiscrepancy discrepancy(const std::vector<Eigen::Vector3d>& scan, const IcpRe
   return out;
 }
 
-// The reference points within `reach` mm of a scan point at the forward pose.
-std::vector<Eigen::Vector3d> covered_part(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+// The reference points within `reach` mm of a scan point at the forward pose; `scan_tree` indexes the scan in its
+// own frame (the reference points are moved there, so no second tree is built).
+std::vector<Eigen::Vector3d> covered_part(const KdTree& scan_tree, const IcpReference& reference,
                                           const Eigen::Isometry3d& T_ref_scan, double reach) {
-  std::vector<Eigen::Vector3d> moved;
-  moved.reserve(scan.size());
-  for (const Eigen::Vector3d& p : scan) moved.push_back(T_ref_scan * p);
-  const KdTree tree(moved);
+  const Eigen::Isometry3d T_scan_ref = T_ref_scan.inverse();
   const std::vector<Eigen::Vector3d>& points = reference.points();
   std::vector<unsigned char> keep(points.size(), 0);
   const float reach_sq = static_cast<float>(reach * reach);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(points.size()); ++i) {
     float sq = 0.0F;
-    tree.nearest(points[static_cast<std::size_t>(i)].cast<float>(), &sq);
+    scan_tree.nearest((T_scan_ref * points[static_cast<std::size_t>(i)]).cast<float>(), &sq);
     keep[static_cast<std::size_t>(i)] = sq <= reach_sq;
   }
   std::vector<Eigen::Vector3d> out;
@@ -71,7 +69,7 @@ FitDiscrepancy inverse_consistency(const std::vector<Eigen::Vector3d>& scan, con
   scan_cloud.vertices = scan;
   const IcpReference target(scan_cloud);
   const double reach = kCropStds * forward.degeneracy.noise_mm + median_spacing(scan, target.tree());
-  const std::vector<Eigen::Vector3d> source = covered_part(scan, reference, forward.T_ref_scan, reach);
+  const std::vector<Eigen::Vector3d> source = covered_part(target.tree(), reference, forward.T_ref_scan, reach);
   if (source.size() < 3) return {};
   IcpOptions reverse = fine;
   reverse.estimate_overlap = true;  // the reference covers more of the part than the scan, as a rule
