@@ -84,6 +84,9 @@ class SicpCommand : public Command {
     c.add_option("--max-local-offset", o.checks.max_local_offset_mm,
                  "Rows where the scan within 4 mm lies farther than this off the model against the rows 8-16 mm "
                  "before and after (significant at 5 standard errors: a dent a few mm across) are untrusted, mm");
+    c.add_option("--max-dent-slope-deg", o.checks.max_dent_slope_deg,
+                 "Rows where a dent narrower than the plane's disc (a Gaussian bump fitted over a quadratic background "
+                 "within 18 mm, significant at 5 standard errors) slopes more than this are untrusted, deg");
     c.add_option("--outlier-ratio", o.checks.outlier_ratio,
                  "A segment whose residual RMS exceeds this times the estimated noise is an outlier (untrusted)");
     c.add_option("--max-off-surface", o.checks.max_off_surface,

@@ -244,7 +244,16 @@ void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t,
   for (std::size_t i = 0; i < misfit.size(); ++i) {
     const SicpRowMisfit& m = misfit[i];
     SicpRowReport& row = c.rows[i];
-    if (m.points == 0) continue;
+    const bool dent = m.dent_z > k;
+    if (dent) {
+      row.dent_slope_deg = m.dent_slope_deg;
+      c.max_dent_slope_deg = std::max(c.max_dent_slope_deg, m.dent_slope_deg);
+      row.misfit = m.dent_slope_deg > o.max_dent_slope_deg;
+    }
+    if (m.points == 0) {
+      if (row.misfit) ++c.misfit_rows;
+      continue;
+    }
     row.surface_offset_mm = m.offset_mm;
     row.normal_error_deg = m.along_error_deg;
     row.local_offset_mm = m.local_offset_mm;
@@ -254,7 +263,7 @@ void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t,
     if (offset) c.max_surface_offset_mm = std::max(c.max_surface_offset_mm, std::abs(m.offset_mm));
     if (tilt) c.max_normal_error_deg = std::max(c.max_normal_error_deg, m.along_error_deg);
     if (local) c.max_local_offset_mm = std::max(c.max_local_offset_mm, std::abs(m.local_offset_mm));
-    row.misfit = (offset && std::abs(m.offset_mm) > o.max_surface_offset_mm) ||
+    row.misfit = row.misfit || (offset && std::abs(m.offset_mm) > o.max_surface_offset_mm) ||
                  (tilt && m.along_error_deg > o.max_normal_error_deg) ||
                  (local && std::abs(m.local_offset_mm) > o.max_local_offset_mm);
     if (row.misfit) ++c.misfit_rows;
@@ -282,7 +291,8 @@ void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t,
       format_fixed(o.max_surface_offset_mm, 2) + "), " + format_fixed(c.max_local_offset_mm, 2) +
       " mm against the neighbouring rows (limit " + format_fixed(o.max_local_offset_mm, 2) + "), tool normals up to " +
       format_fixed(c.max_normal_error_deg, 1) + " deg off along the path (limit " +
-      format_fixed(o.max_normal_error_deg, 2) +
+      format_fixed(o.max_normal_error_deg, 2) + "), a narrow dent sloping up to " +
+      format_fixed(c.max_dent_slope_deg, 1) + " deg (limit " + format_fixed(o.max_dent_slope_deg, 2) +
       "): a local shape change shorter than a segment (a dent, a bulge) that the path does not follow; inspect the "
       "part there and program that stretch from its own measurement");
 }
@@ -347,6 +357,8 @@ bool SicpCheckOptions::IsValid(std::string* error) const {
     why = "largest offset of the scanned surface from the model must be > 0 mm";
   else if (!std::isfinite(max_normal_error_deg) || max_normal_error_deg <= 0.0)
     why = "largest tool normal error must be > 0 deg";
+  else if (!std::isfinite(max_dent_slope_deg) || max_dent_slope_deg <= 0.0)
+    why = "the dent slope limit must be > 0 deg";
   else if (!std::isfinite(max_local_offset_mm) || max_local_offset_mm <= 0.0)
     why = "largest local offset of the scanned surface must be > 0 mm";
   else if (!std::isfinite(misfit_significance) || misfit_significance <= 0.0)

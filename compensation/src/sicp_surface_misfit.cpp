@@ -81,6 +81,61 @@ void compare_with_neighbours(const std::vector<Eigen::Vector3d>& points, bool cl
   }
 }
 
+
+// The matched filter for a narrow dent (sicp_surface_misfit.h): the residuals (u, v, r) fitted by
+// r = a + b u + c v + d u^2 + e u v + f v^2 + k g(u, v), g the Gaussian bump of sigma at the row; three passes, each
+// without the residuals beyond 4 robust sigmas (at least 4 noise) of the fit before (the first: 3 mm off the median;
+// the normal equations are updated by the points that leave or rejoin). Sets dent_mm, dent_z (|k| / se(k) from the
+// noise) and dent_slope_deg; leaves them 0 when the fit is ill-posed.
+void fit_dent_bump(const std::vector<Eigen::Vector3d>& uvr, double sigma, double noise, std::size_t min_points,
+                   SicpRowMisfit& m) {
+  using Vector7d = Eigen::Matrix<double, 7, 1>;
+  using Matrix7d = Eigen::Matrix<double, 7, 7>;
+  const std::size_t enough = std::max<std::size_t>(min_points, 14);
+  if (uvr.size() < enough) return;
+  const double scale = 1.0 / (2.0 * sigma * sigma);
+  std::vector<Vector7d> rows(uvr.size());
+  std::vector<double> misfit(uvr.size()), deviation(uvr.size());
+  std::vector<char> in(uvr.size(), 0);
+  for (std::size_t k = 0; k < uvr.size(); ++k) {
+    const Eigen::Vector3d& p = uvr[k];
+    rows[k] << 1.0, p.x(), p.y(), p.x() * p.x(), p.x() * p.y(), p.y() * p.y(),
+        std::exp(-p.head<2>().squaredNorm() * scale);
+    misfit[k] = p.z();
+  }
+  double centre = median(misfit), limit = 3.0;
+  Matrix7d XtX = Matrix7d::Zero();
+  Vector7d Xtr = Vector7d::Zero();
+  std::size_t used = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    for (std::size_t k = 0; k < uvr.size(); ++k) {
+      const bool keep = std::abs(misfit[k] - centre) <= limit;
+      if (keep == (in[k] != 0)) continue;
+      const double sign = keep ? 1.0 : -1.0;
+      XtX.noalias() += sign * rows[k] * rows[k].transpose();
+      Xtr += sign * uvr[k].z() * rows[k];
+      in[k] = keep ? 1 : 0;
+      used = keep ? used + 1 : used - 1;
+    }
+    if (used < enough) return;
+    const Eigen::LDLT<Matrix7d> ldlt(XtX);
+    if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= 1e-12 * XtX(0, 0)) return;
+    const Vector7d fit = ldlt.solve(Xtr);
+    const double variance = ldlt.solve(Vector7d::Unit(6))(6);
+    if (!(variance > 0.0)) return;
+    m.dent_mm = fit(6);
+    m.dent_z = std::abs(fit(6)) / (noise * std::sqrt(variance));
+    m.dent_slope_deg = std::atan(std::abs(fit(6)) * std::exp(-0.5) / sigma) * kDegPerRad;
+    if (pass == 2) break;
+    for (std::size_t k = 0; k < uvr.size(); ++k) {
+      misfit[k] = uvr[k].z() - rows[k].dot(fit);
+      deviation[k] = std::abs(misfit[k]);
+    }
+    centre = 0.0;
+    limit = std::max(4.0 * 1.4826 * median(deviation), 4.0 * noise);
+  }
+}
+
 }  // namespace
 
 bool SicpMisfitOptions::IsValid(std::string* error) const {
@@ -96,6 +151,10 @@ bool SicpMisfitOptions::IsValid(std::string* error) const {
   else if (!std::isfinite(neighbour_from_mm) || !std::isfinite(neighbour_to_mm) || neighbour_from_mm < 0.0 ||
            neighbour_to_mm <= neighbour_from_mm)
     why = "the neighbours' reach must satisfy 0 <= from < to mm";
+  else if (!std::isfinite(dent_sigma_mm) || dent_sigma_mm <= 0.0)
+    why = "the dent's sigma must be > 0 mm";
+  else if (!std::isfinite(dent_radius_mm) || dent_radius_mm < 2.0 * dent_sigma_mm || dent_radius_mm > 100.0)
+    why = "the dent fit's radius must be in [2 dent sigma, 100] mm";
   if (why == nullptr) return true;
   if (error != nullptr) *error = why;
   return false;
@@ -112,15 +171,19 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
   if (scan_tree.size() != scan.size()) throw Error("S-ICP surface misfit: the scan's index differs from the scan");
   std::vector<SicpRowMisfit> out(t.points.size());
   if (t.points.empty() || scan.empty()) return out;
-  const std::vector<PointResidual> r = residuals_near_path(t, scan, residual, o.radius_mm);
+  const double dent_radius = o.dent_radius_mm;
+  const std::vector<PointResidual> r =
+      residuals_near_path(t, scan, residual, std::max(o.radius_mm, dent_radius));
   const bool closed = detail::rows_close(t.points);
   const std::vector<Eigen::Vector3d> tangents = path_tangents(t.points, closed);
   const double face = std::cos(o.face_angle_deg / kDegPerRad);
   const double noise = std::max(noise_mm, 1e-6);
+  const float plane_sq = static_cast<float>(o.radius_mm) * static_cast<float>(o.radius_mm);  // as the tree compares
+  const float wide_sq = static_cast<float>(dent_radius) * static_cast<float>(dent_radius);
   std::vector<double> near_mean(t.points.size(), 0.0);
   std::vector<int> indices;
   std::vector<float> sq;
-  std::vector<Eigen::Vector3d> uvr;  // along, across, residual
+  std::vector<Eigen::Vector3d> uvr, wide;  // along, across, residual: within radius_mm, within dent_radius_mm
   std::vector<double> values;
   for (std::size_t i = 0; i < t.points.size(); ++i) {
     const Eigen::Vector3d axis = t.normals[i].normalized();
@@ -128,16 +191,23 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     if (along.norm() < 1e-12) continue;
     along.normalize();
     const Eigen::Vector3d across = axis.cross(along);
-    scan_tree.radius(t.points[i].cast<float>(), static_cast<float>(o.radius_mm), indices, sq);
+    scan_tree.radius(t.points[i].cast<float>(), static_cast<float>(std::max(o.radius_mm, dent_radius)), indices,
+                     sq);
     uvr.clear();
+    wide.clear();
     values.clear();
-    for (int k : indices) {
-      const PointResidual& p = r[static_cast<std::size_t>(k)];
+    for (std::size_t j = 0; j < indices.size(); ++j) {
+      const PointResidual& p = r[static_cast<std::size_t>(indices[j])];
       if (!p.found || p.normal.dot(axis) < face) continue;
-      const Eigen::Vector3d d = scan[static_cast<std::size_t>(k)] - t.points[i];
-      uvr.emplace_back(d.dot(along), d.dot(across), p.residual_mm);
+      const Eigen::Vector3d d = scan[static_cast<std::size_t>(indices[j])] - t.points[i];
+      const Eigen::Vector3d point(d.dot(along), d.dot(across), p.residual_mm);
+      if (sq[j] <= wide_sq) wide.push_back(point);
+      if (sq[j] > plane_sq) continue;
+      uvr.push_back(point);
       values.push_back(p.residual_mm);
     }
+    SicpRowMisfit& m = out[i];
+    fit_dent_bump(wide, o.dent_sigma_mm, noise, o.min_points, m);
     if (uvr.size() < o.min_points) continue;
     const double centre = median(values);
     for (double& v : values) v = std::abs(v - centre);
@@ -158,7 +228,6 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     const Eigen::LDLT<Eigen::Matrix3d> ldlt(XtX);
     const Eigen::Vector3d fit = ldlt.solve(Xtr);
     const Eigen::Matrix3d cov = noise * noise * ldlt.solve(Eigen::Matrix3d::Identity());
-    SicpRowMisfit& m = out[i];
     m.points = used;
     m.offset_mm = fit(0);
     m.offset_se_mm = std::sqrt(std::max(cov(0, 0), 0.0));

@@ -346,7 +346,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
                   "normal_smoothing", "normals",         "truth",          "out_trajectory",   "out_rows",
                   "report",           "progress",        "cad_deflection", "cad_angle_deg",    "cad_save_mesh",
                   "max_corner_gap",   "max_edge_offset", "max_row_step",   "max_off_surface",  "max_surface_offset",
-                  "max_normal_error_deg", "max_local_offset"});
+                  "max_normal_error_deg", "max_local_offset", "max_dent_slope_deg"});
   const auto take = [&kw](const char* name) {
     return kw.contains(name) ? py::object(kw[name]) : py::object(py::none());
   };
@@ -399,6 +399,7 @@ py::tuple job_sicp(const py::object& contour, const py::object& scan, const py::
   set("max_surface_offset", o.checks.max_surface_offset_mm);
   set("max_normal_error_deg", o.checks.max_normal_error_deg);
   set("max_local_offset", o.checks.max_local_offset_mm);
+  set("max_dent_slope_deg", o.checks.max_dent_slope_deg);
   set("normal_smoothing", o.normals.smooth_mm);
   const Progress progress(take("progress"));
   options.progress = progress.function();

@@ -83,7 +83,8 @@ def test_sicp_matches_cli(plate, tmp_path):
     np.testing.assert_allclose(written[:, :3], r.points_mm, atol=1e-6)  # the CSV's printed digits
     assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
     checks = {"max_corner_gap": 30, "max_edge_offset": 0.6, "max_row_step": 0.3, "max_off_surface": 0.1,
-              "max_surface_offset": 0.5, "max_normal_error_deg": 2.5, "max_local_offset": 0.3}
+              "max_surface_offset": 0.5, "max_normal_error_deg": 2.5, "max_local_offset": 0.3,
+              "max_dent_slope_deg": 3.5}
     flags = [x for k, v in checks.items() for x in ("--" + k.replace("_", "-"), v)]
     expected = cli_json("sicp", *common, *flags)
     got = conform.sicp(plate["contour.csv"], plate["ply"], plate["trajectory.csv"], surface=plate["nominal.ply"],

@@ -115,6 +115,9 @@ TEST_F(SicpCommandTest, BadInputIsExitCodeTwoAndWritesNothing) {
       sicp({"--surface", surface, "--max-normal-error-deg", "0", "--out-trajectory", dir_.file("o.csv")});
   EXPECT_EQ(misfit.exit_code, 2);
   EXPECT_NE(misfit.err.find("tool normal error must be > 0 deg"), std::string::npos) << misfit.err;
+  const auto dent = sicp({"--surface", surface, "--max-dent-slope-deg", "0", "--out-trajectory", dir_.file("o.csv")});
+  EXPECT_EQ(dent.exit_code, 2);
+  EXPECT_NE(dent.err.find("dent slope limit must be > 0 deg"), std::string::npos) << dent.err;
   const auto gap = sicp({"--surface", surface, "--max-edge-gap", "-1", "--out-trajectory", dir_.file("o.csv")});
   EXPECT_EQ(gap.exit_code, 2);
   EXPECT_NE(gap.err.find("largest bridged gap"), std::string::npos) << gap.err;

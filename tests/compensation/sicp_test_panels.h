@@ -103,6 +103,11 @@ inline PanelRun run(const PanelOptions& options, SicpModel model = SicpModel::kS
   return r;
 }
 
+// Off the bar: peak off path above 0.6 mm, mean above 0.2 mm, tool normals beyond 3 deg or a jump above 0.2 mm.
+inline bool beyond_bar(const TrajectoryError& e) {
+  return e.path_mean_mm > 0.2 || e.path_max_mm > 0.6 || e.normal_max_deg > 3.0 || e.max_step_mm > 0.2;
+}
+
 // The bar, or refused with a reason; prints the figures. Returns whether the path was trusted.
 inline bool meets_bar_or_refused(const PanelRun& r, const std::string& what) {
   const TrajectoryError& e = r.error;
@@ -114,6 +119,7 @@ inline bool meets_bar_or_refused(const PanelRun& r, const std::string& what) {
     std::printf("  edge points %zu, noise %.4f, surface misfit %.3f mm, %.2f deg, local %.3f mm (%zu rows)\n",
                 r.result.registration.scan_edge.size(), c.noise_mm, c.max_surface_offset_mm, c.max_normal_error_deg,
                 c.max_local_offset_mm, c.misfit_rows);
+    std::printf("  dent slope %.2f deg (significant, largest)\n", c.max_dent_slope_deg);
     for (const std::string& w : r.result.registration.warnings) std::printf("  %s\n", w.c_str());
     for (const std::string& w : r.result.check.warnings) std::printf("  %s\n", w.c_str());
     for (const SicpSegmentFit& f : r.result.registration.segments)

@@ -104,6 +104,7 @@ nlohmann::json sicp_json(const SicpJobResult& r) {
                         {"max_surface_offset_mm", c.check.max_surface_offset_mm},
                         {"max_normal_error_deg", c.check.max_normal_error_deg},
                         {"max_local_offset_mm", c.check.max_local_offset_mm},
+                        {"max_dent_slope_deg", c.check.max_dent_slope_deg},
                         {"min_confidence", c.check.min_confidence}}},
                       {"trusted", c.trusted},
                       {"out_trajectory", r.out_trajectory_path},

@@ -10,6 +10,13 @@
 //     model's image of the nominal surface at that place, fitted by a plane r = a + b u + c v in the row's frame (u
 //     along the path, v across it): a is where the scanned surface lies off the model's at the row (the path's error
 //     along the tool axis), (b, c) its tilt (the tool normal's error);
+//   - a dent narrower than the plane's disc (its slope smoothed away there: a 10 mm wide dent's 7 deg came out at
+//     1.5-2 deg) by a matched filter: the residuals within dent_radius_mm fitted by a quadratic background (the
+//     model's own smooth misfit) plus a Gaussian bump k exp(-(u^2 + v^2) / (2 dent_sigma_mm^2)) centred at the row;
+//     the background is measured by the wider disc, so the bump's depth k keeps most of a narrow dent's signal. The
+//     slope the bump implies at its steepest, atan(|k| e^-1/2 / dent_sigma_mm), is what the tool normal misses there.
+//     Fitted three times, each time without the residuals beyond 4 robust sigmas (and 4 noise) of the fit (stray
+//     points; the first time those 3 mm or more off the median);
 //   - the mean residual within near_radius_mm of the row against the same mean at the rows neighbour_from_mm to
 //     neighbour_to_mm along the path on either side: a dent or bulge a few mm across stands out of its neighbours, the
 //     model's own misfit, which varies over a segment's length, does not.
@@ -40,6 +47,8 @@ struct SicpMisfitOptions {
   double near_radius_mm = 4.0;     // the local mean residual: points this close to the row, in (0, radius_mm]
   double neighbour_from_mm = 8.0;  // ... against the rows this far along the path ...
   double neighbour_to_mm = 16.0;   // ... to this far, on either side, > neighbour_from_mm
+  double dent_sigma_mm = 2.5;      // the bump's sigma: a quarter of the narrowest dent looked for (10 mm wide), > 0
+  double dent_radius_mm = 18.0;    // the bump's fit: points this close to the row, in [2 dent_sigma_mm, 100]
   bool IsValid(std::string* error) const;
 };
 
@@ -55,6 +64,9 @@ struct SicpRowMisfit {
   double along_z = 0.0;
   double across_error_deg = 0.0;
   double across_z = 0.0;
+  double dent_mm = 0.0;             // k: the bump's depth at the row (> 0: the scan above the model's surface)
+  double dent_z = 0.0;              // |k| / se(k); 0: not fitted
+  double dent_slope_deg = 0.0;      // the slope the bump implies at its steepest
   std::size_t near_points = 0;      // face points within near_radius_mm (0: too few, under 5)
   double local_offset_mm = 0.0;     // their mean residual minus the neighbours' (the two sides averaged)
   double local_offset_se_mm = 0.0;  // its standard error (0: no neighbours)
