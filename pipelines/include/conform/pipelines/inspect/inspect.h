@@ -4,9 +4,10 @@
 // pipelines/align/align.h), assigns each scan point to the CAD face it lies on (the face of its nearest triangle, if the
 // point is within the distance cut and its normal agrees with the face's), and per face gives the signed deviation
 // (to the exact analytic surface for planes, cylinders, cones, spheres and tori; to the tessellation's smooth surface
-// for other faces), the form (the zone about the least-squares plane or cylinder, evaluation/form.h) and the fitted
-// feature against its nominal (a plane's normal, a cylinder's radius and axis). Points on no face are counted, not
-// forced onto one.
+// for other faces), the form (the zone about the least-squares plane, cylinder, sphere, cone or torus) and the fitted
+// feature against its nominal (a plane's normal, a cylinder's radius and axis, a cone's angle, a torus's radii); and
+// per hole or boss (the cylindrical faces on one cylinder, merged) its size and position. Points on no face are
+// counted, not forced onto one.
 
 #include <cstddef>
 #include <limits>
@@ -44,11 +45,12 @@ struct InspectOptions {
   // Fewer points on a face: its deviation figures are given, its feature is not fitted (nor its form measured).
   std::size_t min_fit_points = 30;
 
-  // Datum faces (ids, primary first; 1 to 3 planes): after the initial pose (transform, best fit or none) the scan is
-  // moved by the 3-2-1 datum fit (pipelines/src/inspect/inspect_datums.h) and every figure is in the datum frame.
+  // Datum faces (ids, primary first; 1 to 3: a plane, then planes or cylinders, a cylinder standing for its whole
+  // hole or boss): after the initial pose (transform, best fit or none) the scan is moved by the 3-2-1 datum fit
+  // (pipelines/src/inspect/inspect_datums.h) and every figure is in the datum frame.
   std::vector<std::size_t> datum_faces;
-  // .csv with columns face, lower_mm, upper_mm, form_mm (pipelines/src/inspect/inspect_tolerances.h): pass/fail per face;
-  // empty: no verdict.
+  // .csv with a column face and any of lower_mm, upper_mm, form_mm, diameter_lower_mm, diameter_upper_mm, position_mm
+  // (pipelines/src/inspect/inspect_tolerances.h): pass/fail per face and feature; empty: no verdict.
   std::string tolerances_path;
   std::string out_faces_path;  // .csv, one row per face; empty: not written
   bool keep_geometry = false;  // keep the scan (part frame) and the CAD's mesh in the result, for a report
@@ -175,7 +177,7 @@ struct InspectResult {
   std::vector<std::string> warnings;
   std::vector<CadReport> cad_inputs;
   std::string out_faces_path;         // written; empty when not
-  // With tolerances: "pass" (every toleranced face measured and within), "fail" (one is not), "incomplete" (none
+  // With tolerances: "pass" (every toleranced face and feature measured and within), "fail" (one is not), "incomplete" (none
   // fails, one is not measured); empty without.
   std::string verdict;
   Mesh scan_ref;   // with options.keep_geometry: the scan's points in the part (datum) frame, mm
