@@ -37,6 +37,9 @@ def test_inspect_gives_the_clis_figures(tmp_path, scan):
     assert r.verdict == "pass"                                   # +-0.05, form 0.05
     assert r.point_face.shape == (r.points,) and set(np.unique(r.point_face)) <= {0, 1}
     assert (r.point_face == 1).sum() == side["points"]
+    boss = r.features[0]  # the side as a feature: a boss of one face
+    assert boss["kind"] == "boss" and boss["faces"] == [1] and boss["points"] == side["points"]
+    assert boss["diameter_mm"] == pytest.approx(30.06, abs=0.004)
 
 
 def test_inspect_takes_an_array_and_judges_tolerances(tmp_path, scan):

@@ -25,6 +25,9 @@
 #include "cad_shapes.h"
 #include "conform/core/cad_faces.h"
 #include "conform/pipelines/inspect/inspect.h"
+#include "conform/pipelines/inspect/inspect_json.h"
+#include "conform/pipelines/inspect/inspect_report.h"
+#include "report_page_checks.h"
 #include "inspect_scans.h"
 #include "run_command.h"
 #include "temp_dir.h"
@@ -182,6 +185,25 @@ TEST(InspectFeatures, ASplitHoleIsOneFeatureWithItsSizeAndPosition) {
   EXPECT_EQ(ja.at("tolerance").at("size_pass"), false);
   EXPECT_EQ(ja.at("tolerance").at("position_pass"), true);
   EXPECT_EQ(j.at("verdict"), "fail");
+  // The report (in process, as --report builds it): a table of the holes, every cell tied to the JSON's features.
+  InspectOptions options;
+  options.scan_path = dir.file("scan.ply");
+  options.reference_path = step;
+  options.tolerances_path = dir.file("limits.csv");
+  options.keep_geometry = true;
+  const InspectResult result = run_inspect(options);
+  const nlohmann::json json = inspect_json(options, result, "mm");
+  EXPECT_EQ(json.at("features").dump(), j.at("features").dump());  // the library call gives the CLI's figures
+  const html::Page page = inspect_report(options, result, json, "");
+  std::size_t feature_rows = 0;
+  for (const html::Section& section : page.sections) {
+    for (const html::Table& table : section.tables) {
+      if (table.title == "Holes and bosses") feature_rows += table.rows.size();
+    }
+  }
+  EXPECT_EQ(feature_rows, 3u);
+  // 9 measured faces (id, points, mean .. form) and 3 features (id, points, diameter, nominal, position, form).
+  EXPECT_GE(test::expect_cells_show_the_json(page), 9u * 6u + 3u * 6u);
   const test::RunResult text = test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("scan.ply"), "--reference", step,
                                                        "--tolerances", dir.file("limits.csv")});
   ASSERT_EQ(text.exit_code, 0) << text.err;
