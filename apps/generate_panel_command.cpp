@@ -96,6 +96,10 @@ class GeneratePanelCommand : public Command {
     c.add_option("--opening", opening_, "The opening: ellipse (porthole) or rectangle (corners --corner-radius)")
         ->check(CLI::IsMember({"ellipse", "rectangle"}));
     c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the rectangle's corners, mm (0: sharp)");
+    add_dent_options(c);
+  }
+
+  void add_dent_options(CLI::App& c) {
     c.add_option("--dent", o_.dent_depth_mm, "A dent at the opening's edge: its depth into the part, mm (0: none)");
     c.add_option("--dent-width", o_.dent_width_mm, "The dent's full width (4 sigma of its Gaussian profile), mm");
     c.add_option("--dent-at", o_.dent_at, "Where the dent is: the angle about the opening's centre, share of a turn");
@@ -110,6 +114,7 @@ class GeneratePanelCommand : public Command {
     c.add_option("--corner-radius", o_.corner_radius_mm, "Radius of the opening's corners, mm (0: sharp)");
     c.add_option("--ovality", o_.ovality_mm, "Ovality of the cross-section, mm");
     c.add_option("--droop", o_.droop_mm, "Droop of the front end, mm");
+    add_dent_options(c);
   }
 
   PanelOptions o_;

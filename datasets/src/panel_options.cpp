@@ -72,7 +72,6 @@ bool check_sampling(const PanelOptions& o, std::string* error) {
     return fail(error, "stray fraction must be in [0, 0.2], got " + number(o.stray_fraction));
   if (!std::isfinite(o.dent_depth_mm) || std::abs(o.dent_depth_mm) > 100.0)
     return fail(error, "dent depth must be in [-100, 100] mm, got " + number(o.dent_depth_mm));
-  if (o.dent_depth_mm != 0.0 && o.shape != PanelShape::kPlate) return fail(error, "a dent is made on the plate only");
   if (!positive(o.dent_width_mm) || o.dent_width_mm > 1000.0)
     return fail(error, "dent width must be in (0, 1000] mm, got " + number(o.dent_width_mm));
   if (!std::isfinite(o.dent_at) || o.dent_at < 0.0 || o.dent_at >= 1.0)

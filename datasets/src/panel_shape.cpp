@@ -124,16 +124,38 @@ Eigen::Vector3d smooth_field(const PanelOptions& o, const Eigen::Vector3d& p) {
   return o.field_mm * Eigen::Vector3d(0.5 * d.x(), 0.5 * d.y(), d.z());
 }
 
-// The dent's centre on the plate's opening (panel_options.h: dent_at): on the ellipse at that parameter angle, on
-// the rectangle where the ray meets its sides (the rounded corners left aside).
+// The dent's centre on the opening (panel_options.h: dent_at), in the parameter plane: on the ellipse at that parameter
+// angle, on the rectangle and the nose cone's trapezoid where the ray from the opening's centre meets its sides (the
+// rounded corners left aside).
 Eigen::Vector2d dent_centre(const PanelOptions& o) {
-  const double a = 0.5 * o.porthole_width_mm, b = o.round ? a : 0.5 * o.porthole_height_mm;
   const double t = 2.0 * M_PI * o.dent_at;
   const Eigen::Vector2d d(std::cos(t), std::sin(t));
+  if (o.shape == PanelShape::kNoseCone) {
+    const double h = 0.5 * o.window_height_mm;
+    const std::array<Eigen::Vector2d, 4> v = {Eigen::Vector2d(-h, -0.5 * o.window_bottom_mm),
+                                              Eigen::Vector2d(h, -0.5 * o.window_top_mm),
+                                              Eigen::Vector2d(h, 0.5 * o.window_top_mm),
+                                              Eigen::Vector2d(-h, 0.5 * o.window_bottom_mm)};
+    double reach = 1e300;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Eigen::Vector2d side = v[(k + 1) % 4] - v[k];
+      const Eigen::Vector2d outward(side.y(), -side.x());
+      if (outward.dot(d) > 1e-12) reach = std::min(reach, outward.dot(v[k]) / outward.dot(d));
+    }
+    return reach * d;
+  }
+  const double a = 0.5 * o.porthole_width_mm, b = o.round ? a : 0.5 * o.porthole_height_mm;
   if (o.opening == PlateOpening::kEllipse) return {o.porthole_x_mm + a * d.x(), o.porthole_y_mm + b * d.y()};
   const double reach = std::min(std::abs(d.x()) > 1e-12 ? a / std::abs(d.x()) : 1e300,
                                 std::abs(d.y()) > 1e-12 ? b / std::abs(d.y()) : 1e300);
   return Eigen::Vector2d(o.porthole_x_mm, o.porthole_y_mm) + reach * d;
+}
+
+// The dent's depth at the parameter point q (Gaussian, sigma a quarter of the full width); 0 without a dent.
+double dent_depth_at(const PanelOptions& o, const Eigen::Vector2d& q) {
+  if (o.dent_depth_mm == 0.0) return 0.0;
+  const double sigma = 0.25 * o.dent_width_mm;
+  return o.dent_depth_mm * std::exp(-(q - dent_centre(o)).squaredNorm() / (2.0 * sigma * sigma));
 }
 
 // Normalised deflection of a uniformly loaded simply supported beam, 1 at mid-span, 0 at the supports.
@@ -144,18 +166,15 @@ Eigen::Vector3d displacement(const PanelOptions& o, const Eigen::Vector3d& p) {
     const double xi = p.x() / o.clamp_span_mm + 0.5;
     const double u = 2.0 * p.x() / o.clamp_span_mm;
     const double v = 2.0 * (p.y() - o.porthole_y_mm) / (o.round ? o.porthole_width_mm : o.porthole_height_mm);
-    double dent = 0.0;
-    if (o.dent_depth_mm != 0.0) {  // Gaussian, sigma a quarter of the full width
-      const double sigma = 0.25 * o.dent_width_mm;
-      dent = o.dent_depth_mm * std::exp(-(p.head<2>() - dent_centre(o)).squaredNorm() / (2.0 * sigma * sigma));
-    }
+    const double dent = dent_depth_at(o, p.head<2>());
     return Eigen::Vector3d(0.0, 0.0, -o.sag_mm * beam(xi) + o.bend_mm * v * v + o.twist_mm * u * v - dent) +
            smooth_field(o, p);
   }
   const double theta = std::atan2(p.y(), p.z());
   const Eigen::Vector3d e_r(0.0, std::sin(theta), std::cos(theta));
   const double front = (p.x() + 0.5 * o.barrel_length_mm) / o.barrel_length_mm;
-  return o.ovality_mm * std::cos(2.0 * theta) * e_r - o.droop_mm * front * front * Eigen::Vector3d::UnitZ() +
+  const double dent = dent_depth_at(o, Eigen::Vector2d(p.x(), o.barrel_radius_mm * theta));  // into the barrel
+  return (o.ovality_mm * std::cos(2.0 * theta) - dent) * e_r - o.droop_mm * front * front * Eigen::Vector3d::UnitZ() +
          smooth_field(o, p);
 }
 

@@ -5,6 +5,7 @@
 #include "conform/datasets/panel.h"
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -107,6 +108,45 @@ TEST(Panel, NoseConeScanNoiseMissingArcsAndDeterminism) {
   const PanelData again = generate_panel(o);
   ASSERT_EQ(again.scan.size(), missing.scan.size());
   for (std::size_t i = 0; i < again.scan.size(); ++i) EXPECT_EQ(again.scan.points[i].x, missing.scan.points[i].x);
+}
+
+// A dent presses into the part at the opening's edge, on the plate (oval and cut-out) and on the nose cone: with every
+// other deformation off, the truth's rows move by the dent alone, into the part along the nominal normal, its full
+// depth at the row nearest the dent's centre (within 0.5 mm of it: 1 mm rows) and nothing two widths away.
+TEST(Panel, DentsPressIntoThePartAtTheEdge) {
+  for (const PanelShape shape : {PanelShape::kPlate, PanelShape::kNoseCone}) {
+    for (const PlateOpening opening : {PlateOpening::kEllipse, PlateOpening::kRoundedRectangle}) {
+      if (shape == PanelShape::kNoseCone && opening == PlateOpening::kRoundedRectangle) continue;
+      for (const double at : {0.3, 0.55}) {
+        PanelOptions o = small(shape);
+        o.opening = opening;
+        o.sag_mm = o.bend_mm = o.twist_mm = o.ovality_mm = o.droop_mm = o.field_mm = 0.0;
+        o.rotation_deg.setZero();
+        o.translation_mm.setZero();
+        o.dent_depth_mm = 1.0;
+        o.dent_width_mm = 20.0;
+        o.dent_at = at;
+        const PanelData d = generate_panel(o);
+        std::size_t deepest = 0;
+        double depth = 0.0;
+        for (std::size_t i = 0; i < d.truth.points.size(); ++i) {
+          const Eigen::Vector3d move = d.truth.points[i] - d.trajectory.points[i];
+          // Into the part: the plate along -z, the nose cone towards the barrel's axis (its nominal normal).
+          const Eigen::Vector3d inward =
+              shape == PanelShape::kPlate ? Eigen::Vector3d(-Eigen::Vector3d::UnitZ()) : -d.trajectory.normals[i];
+          EXPECT_LT((move - move.norm() * inward).norm(), 1e-6 + 1e-3 * move.norm()) << i;
+          if (move.norm() > depth) depth = move.norm(), deepest = i;
+        }
+        const std::string what = std::string(to_string(shape)) + " " + to_string(opening) + " " + std::to_string(at);
+        EXPECT_NEAR(depth, 1.0, 0.01) << what;  // the row within 0.5 mm of the centre: exp(-0.5^2 / 50) of it
+        for (std::size_t i = 0; i < d.truth.points.size(); ++i) {
+          if ((d.trajectory.points[i] - d.trajectory.points[deepest]).norm() > 40.0) {
+            EXPECT_LT((d.truth.points[i] - d.trajectory.points[i]).norm(), 1e-6) << what << ", row " << i;
+          }
+        }
+      }
+    }
+  }
 }
 
 // scan_points 0: each shape's default_scan_points (the number `generate plate --help` and `nosecone --help` state).

@@ -86,9 +86,10 @@ struct PanelOptions {
   // directions and phases): |D_z| <= field_mm, |D_x|, |D_y| <= field_mm / 2 (in the plane: it moves the edge across).
   double field_mm = 0.0;
   double field_wavelength_mm = 400.0;
-  // Plate: a local dent at the opening's edge, dent_depth_mm along -z (into the part) with a Gaussian profile of full
-  // width dent_width_mm (where it falls to 1/e^2 of its depth: 4 sigma), centred where the ray from the opening's
-  // centre at the angle dent_at x 360 deg (from +x, counter-clockwise) meets the edge; dent_at in [0, 1). 0: none.
+  // A local dent at the opening's edge, dent_depth_mm into the part (plate: along -z; nose cone: towards the barrel's
+  // axis) with a Gaussian profile of full width dent_width_mm (where it falls to 1/e^2 of its depth: 4 sigma) in the
+  // parameter plane ((x, y); nose cone: (x, arc length)), centred where the ray from the opening's centre at the angle
+  // dent_at x 360 deg (from +x, counter-clockwise) meets the edge; dent_at in [0, 1). 0: none.
   double dent_depth_mm = 0.0;
   double dent_width_mm = 20.0;
   double dent_at = 0.3;
