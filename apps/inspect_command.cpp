@@ -55,7 +55,8 @@ class InspectCommand : public Command {
     c.add_option("--tolerances", options_.tolerances_path,
                  "Limits per face, .csv with columns face and any of lower_mm, upper_mm, form_mm, and for a hole or "
                  "boss (named by one of its faces) diameter_lower_mm, diameter_upper_mm, position_mm (an empty cell: "
-                 "not toleranced): pass/fail per face and feature and a verdict; the exit code stays 0 when the job ran");
+                 "not toleranced): pass/fail per face and feature and a verdict; the exit code stays 0 when the job "
+                 "ran");
     c.add_option("--out-faces", options_.out_faces_path, "Write one row per face as .csv");
     c.add_option("--units", units_, "Units of the scan and the transform (mm, cm, m, in); the CAD says its own");
     add_report_option(c, report_path_);

@@ -90,8 +90,7 @@ class InspectDatums : public ::testing::Test {
     part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(60, 30, -5), gp::DZ()), 6.0, 30.0).Shape())
                .Shape();
     step_ = dir_.file("part.step");
-    test::write_cad(part, step_, test::CadFormat::kStep, "MM");
-    cad_ = read_cad_faces(step_, CadReadOptions{}, nullptr, nullptr);
+    cad_ = test::write_step(part, step_);
     ids_ = ids_of(cad_);
     ASSERT_TRUE(ids_.bottom && ids_.top && ids_.side_x0 && ids_.side_x80 && ids_.side_y60 && ids_.hole_a &&
                 ids_.hole_b);

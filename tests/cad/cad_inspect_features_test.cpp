@@ -99,8 +99,7 @@ TEST(InspectFeatures, ASplitHoleIsOneFeatureWithItsSizeAndPosition) {
   test::TempDir dir;
   const TopoDS_Shape shape = block_with_three_holes();
   const std::string step = dir.file("part.step");
-  test::write_cad(shape, step, test::CadFormat::kStep, "MM");
-  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  const CadFaces cad = test::write_step(shape, step);
   // The CAD as made: 6 planes, holes A and C two faces each, B one.
   std::vector<std::size_t> faces_a, faces_b, faces_c;
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {
@@ -212,12 +211,49 @@ TEST(InspectFeatures, ASplitHoleIsOneFeatureWithItsSizeAndPosition) {
       << text.out;
 }
 
+// A hole with no scan points cannot be judged: its feature is there (points 0, not fitted), its verdict not measured,
+// and the job's verdict "incomplete" (nothing failed).
+TEST(InspectFeatures, AnUnscannedHoleIsIncomplete) {
+  test::TempDir dir;
+  const TopoDS_Shape shape = block_with_three_holes();
+  const std::string step = dir.file("part.step");
+  const CadFaces cad = test::write_step(shape, step);
+  std::size_t face_c = 0;
+  for (std::size_t f = 0; f < cad.faces.size(); ++f) {
+    if (cad.faces[f].type == CadSurfaceType::kCylinder && &hole_of(cad.faces[f]) == &kHoleC) face_c = f + 1;
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : scan_of(shape, cad, 9)) {
+    if ((p.head<2>() - kHoleC.centre).norm() > kHoleC.radius_mm + 1.0) points.push_back(p);
+  }
+  test::write_scan(dir.file("scan.ply"), points);
+  test::write_bytes(dir.file("limits.csv"), "face,diameter_lower_mm,diameter_upper_mm\n" + std::to_string(face_c) +
+                                                ",7.95,8.05\n");
+  InspectOptions options;
+  options.scan_path = dir.file("scan.ply");
+  options.reference_path = step;
+  options.tolerances_path = dir.file("limits.csv");
+  const InspectResult r = run_inspect(options);
+  ASSERT_TRUE(r.ok) << r.termination;
+  ASSERT_EQ(r.features.size(), 3u);
+  const FeatureInspection& c = feature_with(r, face_c);
+  EXPECT_EQ(c.measured.points, 0u);
+  EXPECT_FALSE(c.measured.fitted);
+  ASSERT_TRUE(c.verdict.has_value());
+  EXPECT_FALSE(c.verdict->measured);
+  EXPECT_EQ(r.verdict, "incomplete");
+  for (const FeatureInspection& f : r.features) {
+    if (&f != &c) {
+      EXPECT_FALSE(f.verdict.has_value());  // the file limits C only
+    }
+  }
+}
+
 TEST(InspectFeatures, BadFeatureLimitsAreExitTwo) {
   test::TempDir dir;
   const TopoDS_Shape shape = block_with_three_holes();
   const std::string step = dir.file("part.step");
-  test::write_cad(shape, step, test::CadFormat::kStep, "MM");
-  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  const CadFaces cad = test::write_step(shape, step);
   std::vector<std::size_t> faces_c;
   std::size_t plane = 0;
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {

@@ -44,13 +44,6 @@ double trimmed_zone(std::vector<double> v, double trim_share) {
 
 double theta_of(const Eigen::Vector3d& p) { return std::atan2(p.y(), p.x()); }
 
-InspectResult inspect(const std::string& scan, const std::string& step) {
-  InspectOptions options;
-  options.scan_path = scan;
-  options.reference_path = step;
-  return run_inspect(options);
-}
-
 // A frustum, R 20 at z = 0 to R 10 at z = 20: its apex at z = 40, half-angle atan(1/2) = 26.565 deg. As made: the
 // half-angle 0.05 deg larger about the same apex height, the axis moved (0.03, -0.02) mm; the cone scanned in the
 // band 3 < z < 17 (the rims unseen), the end discs in full.
@@ -58,8 +51,7 @@ TEST(InspectRevolved, ConeHalfAngleAxisAndForm) {
   test::TempDir dir;
   const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp::Origin(), gp::DZ()), 20.0, 10.0, 20.0).Shape();
   const std::string step = dir.file("cone.step");
-  test::write_cad(cone, step, test::CadFormat::kStep, "MM");
-  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  const CadFaces cad = test::write_step(cone, step);
   std::size_t cone_face = cad.faces.size();
   for (std::size_t f = 0; f < cad.faces.size(); ++f) {
     if (cad.faces[f].type == CadSurfaceType::kCone) cone_face = f;
@@ -96,7 +88,7 @@ TEST(InspectRevolved, ConeHalfAngleAxisAndForm) {
       form_truth.push_back(form);
     }
     test::write_scan(dir.file("scan.ply"), points);
-    const InspectResult r = inspect(dir.file("scan.ply"), step);
+    const InspectResult r = test::inspect_in_part_frame(dir.file("scan.ply"), step);
     ASSERT_TRUE(r.ok) << r.termination;
     const FaceInspection& f = r.faces[cone_face];
     ASSERT_TRUE(f.fitted) << f.fit_note;
@@ -122,8 +114,7 @@ TEST(InspectRevolved, TorusRadiiCentreAndForm) {
   test::TempDir dir;
   const TopoDS_Shape torus = test::torus();
   const std::string step = dir.file("torus.step");
-  test::write_cad(torus, step, test::CadFormat::kStep, "MM");
-  const CadFaces cad = read_cad_faces(step, CadReadOptions{}, nullptr, nullptr);
+  const CadFaces cad = test::write_step(torus, step);
   ASSERT_EQ(cad.faces.size(), 1u);
   ASSERT_EQ(cad.faces[0].type, CadSurfaceType::kTorus);
   const Eigen::Vector3d made_centre(0.02, -0.01, 0.015);
@@ -148,7 +139,7 @@ TEST(InspectRevolved, TorusRadiiCentreAndForm) {
       form_truth.push_back(form);
     }
     test::write_scan(dir.file("scan.ply"), points);
-    const InspectResult r = inspect(dir.file("scan.ply"), step);
+    const InspectResult r = test::inspect_in_part_frame(dir.file("scan.ply"), step);
     ASSERT_TRUE(r.ok) << r.termination;
     const FaceInspection& f = r.faces[0];
     ASSERT_TRUE(f.fitted) << f.fit_note;

@@ -112,16 +112,9 @@ GeneratedScan generate(const TopoDS_Shape& part, const CadFaces& cad) {
   return scan;
 }
 
+using test::inspect_in_part_frame;
 using test::write_scan;
 const auto& mean = test::mean_of;
-
-// run_inspect on `scan` against `step` in the part frame, with the defaults.
-InspectResult inspect_in_part_frame(const std::string& scan, const std::string& step) {
-  InspectOptions options;
-  options.scan_path = scan;
-  options.reference_path = step;
-  return run_inspect(options);
-}
 
 TEST(InspectCommand, KnownFormSizeAndPositionErrorsAreMeasured) {
   test::TempDir dir;

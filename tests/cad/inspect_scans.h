@@ -1,5 +1,6 @@
 #pragma once
-// Scans of generated parts for the `conform inspect` tests: known errors of holes, the scan written to the last bit.
+// Scans of generated parts for the `conform inspect` tests: known errors of holes, the scan written to the last bit,
+// the part as STEP, the inspection in the part frame.
 
 #include <cmath>
 #include <string>
@@ -7,8 +8,11 @@
 
 #include <Eigen/Core>
 
+#include "cad_shapes.h"
+#include "conform/core/cad_faces.h"
 #include "conform/core/io.h"
 #include "conform/core/mesh.h"
+#include "conform/pipelines/inspect/inspect.h"
 
 namespace conform::test {
 
@@ -43,6 +47,20 @@ inline void write_scan(const std::string& path, const std::vector<Eigen::Vector3
   WriteOptions precise;
   precise.double_precision = true;
   write_mesh(path, cloud, precise);
+}
+
+// The shape written as STEP in mm at `path`, and its faces as inspect reads them.
+inline CadFaces write_step(const TopoDS_Shape& shape, const std::string& path) {
+  write_cad(shape, path, CadFormat::kStep, "MM");
+  return read_cad_faces(path, CadReadOptions{}, nullptr, nullptr);
+}
+
+// run_inspect on `scan` against `step` in the part frame, with the defaults.
+inline InspectResult inspect_in_part_frame(const std::string& scan, const std::string& step) {
+  InspectOptions options;
+  options.scan_path = scan;
+  options.reference_path = step;
+  return run_inspect(options);
 }
 
 }  // namespace conform::test

@@ -38,9 +38,9 @@ CsvWriter faces_csv(const InspectResult& result) {
     csv.cell(f.form_measured ? f.form_reference : "");
     number_or_empty(csv, cylinder || sphere || cone || torus, f.radius_mm);
     const CadSurfaceType t = f.nominal.type;
-    number_or_empty(csv,
-                    cone || t == CadSurfaceType::kCylinder || t == CadSurfaceType::kSphere || t == CadSurfaceType::kTorus,
-                    f.nominal_radius_mm);
+    const bool has_nominal_radius =
+        cone || t == CadSurfaceType::kCylinder || t == CadSurfaceType::kSphere || t == CadSurfaceType::kTorus;
+    number_or_empty(csv, has_nominal_radius, f.nominal_radius_mm);
     number_or_empty(csv, cylinder || cone, f.axis_offset_mm);
     number_or_empty(csv, cylinder || cone || torus, f.axis_angle_deg);
     number_or_empty(csv, cylinder, f.position_mm);

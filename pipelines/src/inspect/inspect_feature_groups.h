@@ -1,8 +1,8 @@
 #pragma once
 // `conform inspect`'s features: a hole or boss is the cylinder, not the B-rep face. A CAD kernel often splits a full
-// cylinder into two or more faces (OpenCASCADE's closed-face split, most STEP exporters' half cylinders); the faces that
-// lie on one cylinder (same axis and radius within the tolerances below, same side outside) are one feature, measured
-// on all their points.
+// cylinder into two or more faces (OpenCASCADE's closed-face split, most STEP exporters' half cylinders); the faces
+// that lie on one cylinder (same axis and radius within the tolerances below, same side outside) are one feature,
+// measured on all their points.
 
 #include <cstddef>
 #include <vector>

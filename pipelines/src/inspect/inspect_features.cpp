@@ -18,6 +18,18 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * kDegPerRad;
 }
 
+// The form zone of the points about the fitted feature, `distance` giving each point's residual from it.
+template <typename Distance>
+void set_form_about(const std::vector<Eigen::Vector3d>& points, const char* reference, const InspectOptions& options,
+                    FaceInspection& face, Distance distance) {
+  std::vector<double> residuals;
+  residuals.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) residuals.push_back(distance(p));
+  face.form_measured = true;
+  face.form_reference = reference;
+  face.form = form_zone(residuals, options.form_trim);
+}
+
 void measure_plane(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
   const PlaneFit fit = fit_plane(points);
   if (!fit.ok) {
@@ -32,12 +44,8 @@ void measure_plane(const std::vector<Eigen::Vector3d>& points, const InspectOpti
   const Eigen::Vector3d& centre = face.nominal.origin_mm;
   const double along = face.normal.dot(nominal);
   face.plane_offset_mm = std::abs(along) > 1e-12 ? face.normal.dot(fit.point - centre) / along : 0.0;
-  std::vector<double> residuals;
-  residuals.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) residuals.push_back(face.normal.dot(p - fit.point));
-  face.form_measured = true;
-  face.form_reference = "least-squares plane";
-  face.form = form_zone(residuals, options.form_trim);
+  set_form_about(points, "least-squares plane", options, face,
+                 [&](const Eigen::Vector3d& p) { return face.normal.dot(p - fit.point); });
 }
 
 void measure_cylinder(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
@@ -83,12 +91,8 @@ void measure_cylinder(const std::vector<Eigen::Vector3d>& points, const std::vec
     farthest = std::max(farthest, (from_nominal - from_nominal.dot(nominal.axis) * nominal.axis).norm());
   }
   face.position_mm = 2.0 * farthest;
-  std::vector<double> residuals;
-  residuals.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) residuals.push_back(signed_distance(c, p));
-  face.form_measured = true;
-  face.form_reference = "least-squares cylinder";
-  face.form = form_zone(residuals, options.form_trim);
+  set_form_about(points, "least-squares cylinder", options, face,
+                 [&](const Eigen::Vector3d& p) { return signed_distance(c, p); });
 }
 
 void measure_sphere(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
@@ -101,12 +105,8 @@ void measure_sphere(const std::vector<Eigen::Vector3d>& points, const InspectOpt
   face.radius_mm = fit.radius_mm;
   face.centre_mm = fit.centre;
   face.centre_offset_mm = (fit.centre - face.nominal.origin_mm).norm();
-  std::vector<double> residuals;
-  residuals.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) residuals.push_back((p - fit.centre).norm() - fit.radius_mm);
-  face.form_measured = true;
-  face.form_reference = "least-squares sphere";
-  face.form = form_zone(residuals, options.form_trim);
+  set_form_about(points, "least-squares sphere", options, face,
+                 [&](const Eigen::Vector3d& p) { return (p - fit.centre).norm() - fit.radius_mm; });
 }
 
 // The least-squares cone from the nominal (evaluation/revolved_fit.h): its half-angle, axis, apex, and at the
@@ -130,12 +130,8 @@ void measure_cone(const std::vector<Eigen::Vector3d>& points, const InspectOptio
   face.axis_offset_mm = (middle - face.axis_point_mm).norm();
   face.radius_mm = fit.radius_mm + along * std::tan(fit.half_angle_rad);
   face.nominal_radius_mm = (middle - nominal.origin_mm).norm() * std::tan(nominal.half_angle_rad);
-  std::vector<double> residuals;
-  residuals.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) residuals.push_back(cone_distance(fit, p));
-  face.form_measured = true;
-  face.form_reference = "least-squares cone";
-  face.form = form_zone(residuals, options.form_trim);
+  set_form_about(points, "least-squares cone", options, face,
+                 [&](const Eigen::Vector3d& p) { return cone_distance(fit, p); });
 }
 
 void measure_torus(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
@@ -153,12 +149,8 @@ void measure_torus(const std::vector<Eigen::Vector3d>& points, const InspectOpti
   face.centre_offset_mm = (fit.centre - nominal.origin_mm).norm();
   face.radius_mm = fit.major_radius_mm;
   face.minor_radius_mm = fit.minor_radius_mm;
-  std::vector<double> residuals;
-  residuals.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) residuals.push_back(torus_distance(fit, p));
-  face.form_measured = true;
-  face.form_reference = "least-squares torus";
-  face.form = form_zone(residuals, options.form_trim);
+  set_form_about(points, "least-squares torus", options, face,
+                 [&](const Eigen::Vector3d& p) { return torus_distance(fit, p); });
 }
 
 }  // namespace

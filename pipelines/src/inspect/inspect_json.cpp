@@ -173,8 +173,8 @@ nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& 
                       {"max_distance_automatic", r.max_distance_automatic},
                       {"max_normal_angle_deg", degrees(options.max_normal_angle_rad)},
                       {"form_definition",
-                       "width of the zone about the least-squares feature (plane, cylinder, cone, sphere, torus; else, or "
-                       "where the fit fails, the nominal surface) "
+                       "width of the zone about the least-squares feature (plane, cylinder, cone, sphere, torus; "
+                       "else, or where the fit fails, the nominal surface) "
                        "holding all but form_trim of the residuals, half trimmed at each end; form_full_mm untrimmed"},
                       {"faces", faces},
                       {"features", features},

@@ -71,7 +71,9 @@ Tolerances read_tolerances(const std::string& path, const std::vector<CadFace>& 
       throw Error(where + "lower_mm " + text_of(table, r, "lower_mm") + " is above upper_mm " +
                   text_of(table, r, "upper_mm"));
     }
-    if (t.form_mm && !(*t.form_mm > 0.0)) throw Error(where + "form_mm must be > 0, not " + text_of(table, r, "form_mm"));
+    if (t.form_mm && !(*t.form_mm > 0.0)) {
+      throw Error(where + "form_mm must be > 0, not " + text_of(table, r, "form_mm"));
+    }
     FeatureTolerance ft;
     ft.face_id = f;
     ft.diameter_lower_mm = optional_number(table, r, "diameter_lower_mm");
@@ -93,8 +95,8 @@ Tolerances read_tolerances(const std::string& path, const std::vector<CadFace>& 
     }
     feature_row[k] = table.line_numbers[r];
     if (ft.diameter_lower_mm && ft.diameter_upper_mm && *ft.diameter_lower_mm > *ft.diameter_upper_mm) {
-      throw Error(where + "diameter_lower_mm " + text_of(table, r, "diameter_lower_mm") + " is above diameter_upper_mm " +
-                  text_of(table, r, "diameter_upper_mm"));
+      throw Error(where + "diameter_lower_mm " + text_of(table, r, "diameter_lower_mm") +
+                  " is above diameter_upper_mm " + text_of(table, r, "diameter_upper_mm"));
     }
     if (ft.position_mm && !(*ft.position_mm > 0.0)) {
       throw Error(where + "position_mm must be > 0, not " + text_of(table, r, "position_mm"));

@@ -127,7 +127,8 @@ struct FaceInspection {
   Eigen::Vector3d apex_mm = Eigen::Vector3d::Zero();  // cone: fitted
   double radius_std_mm = 0.0;    // cylinder: its standard deviation from the fit (fitting/cylinder.h)
   Eigen::Vector3d axis = Eigen::Vector3d::Zero();        // cylinder, cone, torus: fitted, oriented like the nominal
-  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();  // cylinder, cone: the fitted axis's point nearest the nominal's
+  // cylinder, cone: the fitted axis's point nearest the nominal's
+  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();
   double axis_offset_mm = 0.0;   // cylinder, cone: from the nominal axis point at the face's middle to the fitted axis
   double axis_angle_deg = 0.0;   // cylinder, cone, torus: between the fitted and the nominal axis
   double length_mm = 0.0;        // cylinder: the span of its points along the fitted axis
@@ -177,8 +178,8 @@ struct InspectResult {
   std::vector<std::string> warnings;
   std::vector<CadReport> cad_inputs;
   std::string out_faces_path;         // written; empty when not
-  // With tolerances: "pass" (every toleranced face and feature measured and within), "fail" (one is not), "incomplete" (none
-  // fails, one is not measured); empty without.
+  // With tolerances: "pass" (every toleranced face and feature measured and within), "fail" (one is not),
+  // "incomplete" (none fails, one is not measured); empty without.
   std::string verdict;
   Mesh scan_ref;   // with options.keep_geometry: the scan's points in the part (datum) frame, mm
   Mesh reference;  // with options.keep_geometry: the CAD's tessellation, mm
