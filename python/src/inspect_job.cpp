@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/units.h"
 #include "conform/pipelines/inspect/inspect.h"
@@ -38,7 +39,7 @@ py::tuple job_inspect(const py::object& scan, const py::object& reference, const
   options.best_fit = align.has_value();
   options.datum_faces = datums;
   options.max_distance_mm = max_distance;
-  options.max_normal_angle_rad = max_normal_angle_deg * M_PI / 180.0;
+  options.max_normal_angle_rad = radians(max_normal_angle_deg);
   options.form_trim = form_trim;
   options.min_fit_points = min_fit_points;
   options.tolerances_path = path_of(tolerances);

@@ -22,6 +22,7 @@
 #include "conform/core/constants.h"
 #include "conform/pipelines/inspect/inspect.h"
 #include "inspect_scans.h"
+#include "run_command.h"
 #include "temp_dir.h"
 
 namespace conform {
@@ -153,6 +154,16 @@ TEST(InspectRevolved, TorusRadiiCentreAndForm) {
     EXPECT_NEAR(f.form.width_mm, truth, 0.001);
     EXPECT_GT(f.form.width_mm, 2.0 * kWave);
   }
+  // The CLI's text and the faces' CSV give the fitted torus (the last seed's scan).
+  const test::RunResult run = test::run(CONFORM_EXE, {"inspect", "--scan", dir.file("scan.ply"), "--reference", step,
+                                                      "--out-faces", dir.file("faces.csv")});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("radii 10.030"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("(nominal 10.0000 / 3.0000)"), std::string::npos) << run.out;
+  const std::string csv = test::read_bytes(dir.file("faces.csv"));
+  const std::size_t row = csv.find("\n1,torus,");
+  ASSERT_NE(row, std::string::npos) << csv;
+  EXPECT_NE(csv.find(",least-squares torus,10.0", row), std::string::npos) << csv;  // form reference, major radius
 }
 
 }  // namespace
