@@ -152,13 +152,21 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
     if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
     const Face& t = g.mesh.faces[f];
     const auto V = [&](int c) { return g.mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])]; };
-    const Eigen::Vector3d p = V(0) + u * (V(1) - V(0)) + v * (V(2) - V(0));
+    Eigen::Vector3d p = V(0) + u * (V(1) - V(0)) + v * (V(2) - V(0));
+    bool across_stripes = false;  // a face nearly parallel to the stripes' planes: no stripe crosses it
+    if (o.stripe_spacing_mm > 0.0) {  // along the face's plane to the nearest stripe: x changes, the face holds
+      const Eigen::Vector3d n = face_normal(g.mesh, f);
+      const Eigen::Vector3d along = Eigen::Vector3d::UnitX() - n.x() * n;
+      across_stripes = along.x() < 0.1;
+      const double stripe_x = std::round(p.x() / o.stripe_spacing_mm) * o.stripe_spacing_mm;
+      if (!across_stripes) p += (stripe_x - p.x()) / along.x() * along;
+    }
     const double z = noise.normal();  // drawn for every point, so that holes do not shift the others' noise
     const bool is_stray = stray.uniform() < o.stray_fraction;
     const double offset = (stray.uniform() < 0.5 ? -1.0 : 1.0) * stray.uniform(1.0, 20.0);
     const auto v0 = static_cast<std::size_t>(t[0]);
     bool removed = in_arc(data.missing_arcs, g.tau[v0]) && g.depth_from_edge[v0] <= o.missing_depth_mm;
-    removed = removed || (!o.scan_flank && g.flank_face[f]);
+    removed = removed || (!o.scan_flank && g.flank_face[f]) || across_stripes;
     for (const Eigen::Vector3d& c : hole_centres) removed = removed || (p - c).norm() < o.hole_radius_mm;
     if (removed) {
       ++data.scan_points_removed;

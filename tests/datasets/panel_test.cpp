@@ -149,6 +149,28 @@ TEST(Panel, DentsPressIntoThePartAtTheEdge) {
   }
 }
 
+// A laser-stripe scan: without deformation and noise every point lies on a plane x = k spacing (float storage), the
+// plate's and the nose cone's, with as many points as asked less the faces the stripes cannot cross.
+TEST(Panel, StripeScansLieOnTheirPlanes) {
+  for (const PanelShape shape : {PanelShape::kPlate, PanelShape::kNoseCone}) {
+    PanelOptions o = small(shape);
+    o.sag_mm = o.bend_mm = o.twist_mm = o.ovality_mm = o.droop_mm = 0.0;
+    o.rotation_deg.setZero();
+    o.translation_mm.setZero();
+    o.noise_mm = 0.0;
+    o.stripe_spacing_mm = 2.5;
+    const PanelData d = generate_panel(o);
+    EXPECT_GT(d.scan.size(), 18000u) << to_string(shape);
+    for (const pcl::PointXYZ& p : d.scan.points) {
+      const double x = static_cast<double>(p.x);
+      EXPECT_NEAR(x, 2.5 * std::round(x / 2.5), 1e-3) << to_string(shape);
+    }
+  }
+  PanelOptions bad = small(PanelShape::kPlate);
+  bad.stripe_spacing_mm = 0.1;
+  EXPECT_THROW(generate_panel(bad), Error);
+}
+
 // scan_points 0: each shape's default_scan_points (the number `generate plate --help` and `nosecone --help` state).
 TEST(Panel, ZeroScanPointsDrawsTheShapesDefault) {
   EXPECT_EQ(default_scan_points(PanelShape::kPlate), 120000);

@@ -33,6 +33,7 @@ nlohmann::json options_json(const PanelOptions& o) {
                       {"field_wavelength_mm", o.field_wavelength_mm},
                       {"scan_flank", o.scan_flank},
                       {"stray_fraction", o.stray_fraction},
+                      {"stripe_spacing_mm", o.stripe_spacing_mm},
                       {"seed", o.seed}};
   if (o.shape == PanelShape::kPlate) {
     j["plate"] = {{"radius_x_mm", o.plate_radius_x_mm},
@@ -58,7 +59,10 @@ nlohmann::json options_json(const PanelOptions& o) {
                      {"corner_radius_mm", o.corner_radius_mm},
                      {"barrel_length_mm", o.barrel_length_mm},
                      {"ovality_mm", o.ovality_mm},
-                     {"droop_mm", o.droop_mm}};
+                     {"droop_mm", o.droop_mm},
+                     {"dent_depth_mm", o.dent_depth_mm},
+                     {"dent_width_mm", o.dent_width_mm},
+                     {"dent_at", o.dent_at}};
   }
   return j;
 }
