@@ -86,7 +86,8 @@ void compare_with_neighbours(const std::vector<Eigen::Vector3d>& points, bool cl
 // r = a + b u + c v + d u^2 + e u v + f v^2 + k g(u, v), g the Gaussian bump of sigma at the row; three passes, each
 // without the residuals beyond 4 robust sigmas (at least 4 noise) of the fit before (the first: 3 mm off the median;
 // the normal equations are updated by the points that leave or rejoin). Sets dent_mm, dent_z (|k| / se(k) from the
-// noise) and dent_slope_deg; leaves them 0 when the fit is ill-posed.
+// noise, or from the fit's own robust scatter where that is larger: a misfit the background does not follow) and
+// dent_slope_deg; leaves them 0 when the fit is ill-posed.
 void fit_dent_bump(const std::vector<Eigen::Vector3d>& uvr, double sigma, double noise, std::size_t min_points,
                    SicpRowMisfit& m) {
   using Vector7d = Eigen::Matrix<double, 7, 1>;
@@ -103,7 +104,7 @@ void fit_dent_bump(const std::vector<Eigen::Vector3d>& uvr, double sigma, double
         std::exp(-p.head<2>().squaredNorm() * scale);
     misfit[k] = p.z();
   }
-  double centre = median(misfit), limit = 3.0;
+  double centre = median(misfit), limit = 3.0, spread = 0.0;
   Matrix7d XtX = Matrix7d::Zero();
   Vector7d Xtr = Vector7d::Zero();
   std::size_t used = 0;
@@ -124,7 +125,7 @@ void fit_dent_bump(const std::vector<Eigen::Vector3d>& uvr, double sigma, double
     const double variance = ldlt.solve(Vector7d::Unit(6))(6);
     if (!(variance > 0.0)) return;
     m.dent_mm = fit(6);
-    m.dent_z = std::abs(fit(6)) / (noise * std::sqrt(variance));
+    m.dent_z = std::abs(fit(6)) / (std::max(noise, spread) * std::sqrt(variance));
     m.dent_slope_deg = std::atan(std::abs(fit(6)) * std::exp(-0.5) / sigma) * kDegPerRad;
     if (pass == 2) break;
     for (std::size_t k = 0; k < uvr.size(); ++k) {
@@ -132,7 +133,8 @@ void fit_dent_bump(const std::vector<Eigen::Vector3d>& uvr, double sigma, double
       deviation[k] = std::abs(misfit[k]);
     }
     centre = 0.0;
-    limit = std::max(4.0 * 1.4826 * median(deviation), 4.0 * noise);
+    spread = 1.4826 * median(deviation);
+    limit = std::max(4.0 * spread, 4.0 * noise);
   }
 }
 

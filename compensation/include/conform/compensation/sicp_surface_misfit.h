@@ -16,7 +16,8 @@
 //     the background is measured by the wider disc, so the bump's depth k keeps most of a narrow dent's signal. The
 //     slope the bump implies at its steepest, atan(|k| e^-1/2 / dent_sigma_mm), is what the tool normal misses there.
 //     Fitted three times, each time without the residuals beyond 4 robust sigmas (and 4 noise) of the fit (stray
-//     points; the first time those 3 mm or more off the median);
+//     points; the first time those 3 mm or more off the median); k's standard error from the noise or, where larger,
+//     the fit's own robust scatter;
 //   - the mean residual within near_radius_mm of the row against the same mean at the rows neighbour_from_mm to
 //     neighbour_to_mm along the path on either side: a dent or bulge a few mm across stands out of its neighbours, the
 //     model's own misfit, which varies over a segment's length, does not.
