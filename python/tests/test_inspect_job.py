@@ -110,3 +110,28 @@ def test_batch_gives_each_face_and_feature_across_parts_with_their_capability(tm
     assert float(boss["position_max_mm"]) < 0.01  # in the part frame, the axis where it should be
     assert float(boss["position_cpk"]) > 1.0
     assert boss["position_limit_mm"] == "0.05" and boss["diameter_lower_mm"] == "29.9"
+
+
+def test_inspect_with_datums_gives_the_best_fit_beside_the_datum_frame():
+    """The cylinder made 0.05 mm long at its bottom (the bottom cap at z = -0.05), scanned whole (side and both caps,
+    a 0.5 mm grid, no noise). The datum frame of the bottom cap (primary only) puts that cap on its nominal: the top
+    sits 0.05 mm out. The best fit beside it is align="best-fit" without datums, its pose and figures: it leaves about
+    half of the 0.05 mm on each cap. (Its pose may differ by a turn about the axis, which changes no figure.)"""
+    side = [(15 * np.cos(a), 15 * np.sin(a), z) for a in np.arange(0, 2 * np.pi, 0.5 / 15) for z in np.arange(1, 39.5, 0.5)]
+    grid = [(x, y) for x in np.arange(-14.25, 14.3, 0.5) for y in np.arange(-14.25, 14.3, 0.5) if x * x + y * y < 14 ** 2]
+    points = np.array(side + [(x, y, -0.05) for x, y in grid] + [(x, y, 40.0) for x, y in grid])
+    aligned = conform.inspect(points, CYLINDER, align="best-fit", max_distance=1.0)
+    assert "best_fit" not in aligned.faces[0] and "best_fit" not in aligned.to_dict()
+    bottom = next(f["id"] for f in aligned.faces if f["type"] == "plane" and f["nominal"]["normal"][2] < -0.5)
+    top = next(f["id"] for f in aligned.faces if f["type"] == "plane" and f["nominal"]["normal"][2] > 0.5)
+    r = conform.inspect(points, CYLINDER, datums=[bottom], max_distance=1.0)
+    b, t = r.faces[bottom - 1], r.faces[top - 1]
+    assert b["mean_mm"] == pytest.approx(0.0, abs=0.002) and t["mean_mm"] == pytest.approx(0.05, abs=0.002)
+    for face in (bottom, top):
+        for key in ("points", "mean_mm", "std_mm", "min_mm", "max_mm", "form_mm"):
+            assert r.faces[face - 1]["best_fit"][key] == pytest.approx(aligned.faces[face - 1][key], abs=1e-5)
+    assert b["best_fit"]["mean_mm"] == pytest.approx(0.025, abs=0.003)  # not the datum frame's 0
+    assert t["best_fit"]["mean_mm"] == pytest.approx(0.025, abs=0.003)  # nor its 0.05
+    assert r.best_fit["converged"] and r.best_fit["pose"] == "--align best-fit on the scan as read"
+    assert np.allclose(r.best_fit["T_ref_scan"], aligned.to_dict()["T_ref_scan"], atol=1e-9)
+    assert r.features[0]["best_fit"]["diameter_mm"] == pytest.approx(30.0, abs=0.002)

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -22,8 +23,12 @@
 #include "cad_shapes.h"
 #include "conform/core/cad_faces.h"
 #include "conform/core/constants.h"
+#include "conform/core/transform_io.h"
 #include "conform/pipelines/inspect/inspect.h"
+#include "conform/pipelines/inspect/inspect_json.h"
+#include "conform/pipelines/inspect/inspect_report.h"
 #include "inspect_scans.h"
+#include "report_page_checks.h"
 #include "run_command.h"
 #include "temp_dir.h"
 
@@ -106,18 +111,23 @@ class InspectDatums : public ::testing::Test {
     T_scan_ref_.rotate(Eigen::AngleAxisd(radians(0.2), Eigen::Vector3d(1, -2, 3).normalized()));
     T_scan_ref_.translation() = Eigen::Vector3d(0.15, -0.1, 0.12);
     std::vector<Eigen::Vector3d> points;
+    point_face_.clear();
     for (std::size_t i = 0; i < s.points.size(); ++i) {
       const CadFace& f = cad_.faces[static_cast<std::size_t>(s.face[i])];
       if (f.type == CadSurfaceType::kPlane && f.axis.y() < -0.5) continue;
       double error = 0.0;
       if (f.type == CadSurfaceType::kCylinder && f.origin_mm.x() < 40.0) error = test::hole_error(kHoleA, s.points[i]);
       points.push_back(T_scan_ref_ * (s.points[i] + (error + noise(random)) * s.normals[i]));
+      point_face_.push_back(static_cast<std::size_t>(s.face[i]));
     }
     test::write_scan(dir_.file("scan.ply"), points);
+    points_ = points;
   }
 
-  InspectResult inspect(const std::vector<std::size_t>& datums) const {
+  InspectResult inspect(const std::vector<std::size_t>& datums, bool best_fit = false, bool keep = false) const {
     InspectOptions options;
+    options.best_fit = best_fit;
+    options.keep_geometry = keep;
     options.scan_path = dir_.file("scan.ply");
     options.reference_path = step_;
     options.max_distance_mm = 2.0;  // the scan is up to 0.4 mm off the part before the datum fit
@@ -131,6 +141,8 @@ class InspectDatums : public ::testing::Test {
   Ids ids_;
   TopoDS_Shape part_;
   Eigen::Isometry3d T_scan_ref_ = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> points_;  // the scan as written, in its own frame
+  std::vector<std::size_t> point_face_;  // each point's face as sampled, 0-based
 };
 
 const std::uint64_t kSeeds[] = {2, 13, 29};
@@ -198,6 +210,135 @@ TEST_F(InspectDatums, TwoPlanesThenAHole) {
     EXPECT_NEAR(a.measured.axis_point_mm.x(), 20.1, 0.003);
     EXPECT_NEAR(a.measured.axis_point_mm.y(), 30.0, 0.003);
     EXPECT_NEAR(r.faces[ids_.side_x0 - 1].deviation.mean_mm, 0.0, 0.002);
+  }
+}
+
+// Beside the datum frame, the best fit. With A (the bottom), B (hole A), C (the side y = 60) the datum frame is the
+// truth moved by (-0.1, 0.05, 0) mm (hole A's made axis onto its nominal); the best fit of the whole scan stays near
+// the truth (hole A's wall pulls it 0.0013 mm in x over seeds 2, 13, 29). So: the best fit's pose and figures are
+// those of a separate `--align best-fit` run (the same ICP from the same start: within 1e-5 mm, seen < 1e-6); each
+// face's mean at it is its points as written, moved by that pose, against their sampled faces (an independent sum,
+// within 0.001 mm, seen 0.0007: points near edges land on the other face or none); the two poses are hypot(0.1, 0.05)
+// = 0.1118 mm apart at the part (within 0.003, seen 0.1111-0.1117); the side x = 0 sits 0.1 mm out in the datum
+// frame and within 0.005 mm (seen 0.0014) at the best fit; hole A is on its nominal in the datum frame and 2 x 0.11 mm
+// off at the best fit, hole B the other way round. Without datums nothing is added.
+TEST_F(InspectDatums, TheBestFitBesideTheDatumFrame) {
+  for (const std::uint64_t seed : kSeeds) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    scan(seed);
+    const InspectResult r = inspect({ids_.bottom, ids_.hole_a, ids_.side_y60}, false, seed == 2);
+    ASSERT_TRUE(r.ok) << r.termination;
+    ASSERT_TRUE(r.best_fit.computed);
+    ASSERT_TRUE(r.best_fit.converged);
+    ASSERT_EQ(r.best_fit.faces.size(), r.faces.size());
+    ASSERT_EQ(r.best_fit.features.size(), r.features.size());
+
+    // The same pose as --align best-fit, and its figures the same.
+    const InspectResult aligned = inspect({}, true);
+    ASSERT_TRUE(aligned.ok) << aligned.termination;
+    EXPECT_FALSE(aligned.best_fit.computed);
+    EXPECT_LT(pose_difference_mm(r.best_fit.T_ref_scan, aligned.T_ref_scan), 1e-5);
+    for (std::size_t f = 0; f < r.faces.size(); ++f) {
+      SCOPED_TRACE("face " + std::to_string(f + 1));
+      const FaceInspection& b = r.best_fit.faces[f];
+      const FaceInspection& a = aligned.faces[f];
+      if (a.points == 0) continue;
+      EXPECT_EQ(b.points, a.points);
+      EXPECT_NEAR(b.deviation.mean_mm, a.deviation.mean_mm, 1e-5);
+      EXPECT_NEAR(b.deviation.std_mm, a.deviation.std_mm, 1e-5);
+      EXPECT_NEAR(b.form.width_mm, a.form.width_mm, 1e-5);
+    }
+
+    // Each face's mean and the holes' position at the best fit from the points as written, by their sampled face.
+    std::vector<double> sum(cad_.faces.size(), 0.0);
+    std::vector<std::size_t> count(cad_.faces.size(), 0);
+    double displacement = 0.0;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Eigen::Vector3d q = r.best_fit.T_ref_scan * points_[i];
+      sum[point_face_[i]] += analytic_signed_distance(cad_.faces[point_face_[i]], q);
+      ++count[point_face_[i]];
+      displacement = std::max(displacement, (r.T_ref_scan * points_[i] - q).norm());
+    }
+    for (std::size_t f = 0; f < cad_.faces.size(); ++f) {
+      if (count[f] < 100) continue;
+      EXPECT_NEAR(r.best_fit.faces[f].deviation.mean_mm, sum[f] / static_cast<double>(count[f]), 0.001)
+          << "face " << f + 1;
+    }
+    EXPECT_NEAR(r.best_fit.displacement_mm, displacement, 1e-6);
+    EXPECT_NEAR(r.best_fit.displacement_mm, std::hypot(0.1, 0.05), 0.003);
+    EXPECT_NEAR(r.best_fit.angle_deg,
+                degrees(Eigen::AngleAxisd(r.T_ref_scan.linear() * r.best_fit.T_ref_scan.linear().transpose()).angle()),
+                1e-6);
+    EXPECT_LT(r.best_fit.angle_deg, 0.01);
+
+    // Not a copy of the datum frame's figures: the side x = 0 and hole A.
+    const double datum_side = r.faces[ids_.side_x0 - 1].deviation.mean_mm;
+    const double best_side = r.best_fit.faces[ids_.side_x0 - 1].deviation.mean_mm;
+    EXPECT_NEAR(datum_side, 0.1, 0.002);
+    EXPECT_LT(std::abs(best_side), 0.005);
+    EXPECT_GT(datum_side - best_side, 0.09);
+    EXPECT_LT(r.features[0].measured.position_mm, 0.008);  // the datum hole on its nominal
+    EXPECT_NEAR(r.best_fit.features[0].measured.position_mm, 2.0 * std::hypot(0.1, 0.05), 0.008);
+    EXPECT_NEAR(r.features[1].measured.position_mm, 2.0 * std::hypot(0.1, 0.05), 0.008);  // hole B: the other way
+    EXPECT_LT(r.best_fit.features[1].measured.position_mm, 0.01);
+    EXPECT_NEAR(2.0 * r.best_fit.features[0].measured.radius_mm, 2.0 * r.features[0].measured.radius_mm, 0.001);
+
+    // The JSON: a best_fit object per face and feature, and the poses; none without datums.
+    InspectOptions options;
+    options.scan_path = dir_.file("scan.ply");
+    options.reference_path = step_;
+    options.datum_faces = {ids_.bottom, ids_.hole_a, ids_.side_y60};
+    const nlohmann::json j = inspect_json(options, r, "mm");
+    ASSERT_TRUE(j.at("best_fit").at("converged").get<bool>());
+    EXPECT_EQ(j.at("best_fit").at("pose"), "--align best-fit on the scan as read");
+    EXPECT_NEAR(j.at("best_fit").at("displacement_mm").get<double>(), displacement, 1e-6);
+    const nlohmann::json& side = j.at("faces").at(ids_.side_x0 - 1);
+    EXPECT_DOUBLE_EQ(side.at("best_fit").at("mean_mm").get<double>(), best_side);
+    EXPECT_DOUBLE_EQ(side.at("mean_mm").get<double>(), datum_side);
+    EXPECT_TRUE(j.at("features").at(0).at("best_fit").contains("position_mm"));
+    InspectOptions plain = options;
+    plain.datum_faces.clear();
+    plain.best_fit = true;
+    const nlohmann::json none = inspect_json(plain, aligned, "mm");
+    EXPECT_FALSE(none.contains("best_fit"));
+    EXPECT_FALSE(none.at("faces").at(0).contains("best_fit"));
+    EXPECT_FALSE(none.at("features").at(0).contains("best_fit"));
+
+    // The report: the best-fit columns beside the datum frame's, each cell showing its JSON value.
+    if (seed != 2) continue;
+    // After a transform (here the identity) the best fit is align's fine fit from it: the same pose.
+    write_transform(dir_.file("identity.txt"), Eigen::Isometry3d::Identity());
+    InspectOptions given = options;
+    given.transform_path = dir_.file("identity.txt");
+    given.max_distance_mm = 2.0;
+    const InspectResult from_transform = run_inspect(given);
+    ASSERT_TRUE(from_transform.best_fit.converged);
+    EXPECT_LT(pose_difference_mm(from_transform.best_fit.T_ref_scan, r.best_fit.T_ref_scan), 0.001);
+    options.keep_geometry = true;
+    const html::Page page = inspect_report(options, r, j, "");
+    std::size_t tables = 0, best_cells = 0;
+    for (const html::Section& section : page.sections) {
+      for (const html::Table& table : section.tables) {
+        const auto has = [&](const std::string& h) {
+          return std::find(table.header.begin(), table.header.end(), h) != table.header.end();
+        };
+        if (table.title == "Faces") {
+          ++tables;
+          EXPECT_TRUE(has("mean mm") && has("best-fit mean mm") && has("best-fit form mm"));
+        }
+        if (table.title == "Holes and bosses") {
+          ++tables;
+          EXPECT_TRUE(has("position mm") && has("best-fit position mm") && has("best-fit diameter mm"));
+        }
+        for (const auto& row : table.rows) {
+          EXPECT_EQ(row.size(), table.header.size()) << table.title;
+          for (const html::Cell& cell : row) best_cells += cell.json_pointer.find("/best_fit/") != std::string::npos;
+        }
+      }
+    }
+    EXPECT_EQ(tables, 2u);
+    EXPECT_GE(best_cells, 6u * 5u + 2u * 2u);  // 6 scanned faces' 5 figures, the 2 holes' diameter and position
+    EXPECT_GE(test::expect_cells_show_the_json(page), 6u * 10u);
   }
 }
 

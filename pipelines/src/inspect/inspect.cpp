@@ -18,6 +18,7 @@
 #include "conform/core/units.h"
 #include "conform/evaluation/deviation.h"
 #include "conform/pipelines/align/align.h"
+#include "conform/registration/icp.h"
 #include "conform/registration/surface_noise.h"
 #include "inspect/inspect_datums.h"
 #include "inspect/inspect_feature_groups.h"
@@ -258,6 +259,73 @@ void measure_faces(const std::vector<Eigen::Vector3d>& points, const std::vector
   report(options.progress, "faces", 1.0);
 }
 
+// The best fit's correction of the initial pose. After --align best-fit: none (the initial pose is that fit). Without
+// a transform: the fit --align best-fit makes (run_align on the scan as read, from where it is). After a transform:
+// align's fine fit from that pose (point-to-surface ICP against the CAD's tessellation as inspect reads it, align's
+// defaults against a mesh: every pair kept, the maximum distance kAlignAutoDistanceShare of the CAD's box diagonal).
+// False when the fit is not trusted (align) or did not converge (ICP).
+bool inspect_best_fit_correction(const std::vector<Eigen::Vector3d>& points, const Mesh& cad_mesh,
+                                 const InspectOptions& quiet, const InspectResult& result,
+                                 Eigen::Isometry3d& correction) {
+  correction = Eigen::Isometry3d::Identity();
+  if (result.alignment == "best-fit") return true;
+  if (result.alignment == "none") {
+    InspectResult aligned;
+    if (!best_fit(quiet, aligned)) return false;
+    correction = aligned.T_ref_scan;
+    return true;
+  }
+  const AlignOptions align;
+  IcpOptions fine;
+  fine.method = default_align_method(true);
+  fine.max_correspondence_distance_mm = kAlignAutoDistanceShare * bounding_box(cad_mesh).diagonal();
+  fine.kernel = align.kernel;
+  fine.max_iterations = align.max_iterations;
+  fine.free_tolerance_mm = align.free_tolerance_mm;
+  fine.free_tolerance_rad = radians(align.free_tolerance_deg);
+  const IcpResult fit = icp(points, IcpReference(cad_mesh), Eigen::Isometry3d::Identity(), fine);
+  if (!fit.converged) return false;
+  correction = fit.T_ref_scan;
+  return true;
+}
+
+// With datums: every figure again at the best fit (points at the initial pose, moved by the best fit's correction,
+// assigned again), and how far that pose is from the datum frame.
+void measure_at_best_fit(const CadFaces& cad, const std::vector<std::vector<std::size_t>>& features,
+                         const InspectOptions& options, const std::vector<Eigen::Vector3d>& initial_points,
+                         const std::vector<Eigen::Vector3d>& initial_normals, const Eigen::Isometry3d& T_initial,
+                         InspectResult& result) {
+  InspectBestFit& best = result.best_fit;
+  best.computed = true;
+  InspectOptions quiet = options;
+  quiet.progress = nullptr;
+  Eigen::Isometry3d correction;
+  best.converged = inspect_best_fit_correction(initial_points, cad.mesh, quiet, result, correction);
+  if (!best.converged) {
+    result.warnings.push_back("the best fit beside the datum frame is not trusted or did not converge: no best-fit "
+                              "figures");
+    return;
+  }
+  best.T_ref_scan = correction * T_initial;
+  best.angle_deg = degrees(Eigen::AngleAxisd(result.T_datum_initial.linear() * correction.linear().transpose()).angle());
+  std::vector<Eigen::Vector3d> points(initial_points.size()), normals(initial_normals.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = correction * initial_points[i];
+    normals[i] = correction.linear() * initial_normals[i];
+    best.displacement_mm = std::max(best.displacement_mm, (result.T_datum_initial * initial_points[i] - points[i]).norm());
+  }
+  InspectResult at;
+  at.max_distance_mm = result.max_distance_mm;
+  assign_points(points, normals, cad, quiet, at);
+  measure_faces(points, normals, cad, features, quiet, at);
+  const CadFace& primary = cad.faces[options.datum_faces[0] - 1];
+  for (FaceInspection& f : at.faces) add_perpendicularity(primary, f);
+  for (FeatureInspection& f : at.features) add_perpendicularity(primary, f.measured);
+  best.assigned = at.assigned;
+  best.faces = std::move(at.faces);
+  best.features = std::move(at.features);
+}
+
 // PCA normals of the scan's points (sign ignored by the normal check).
 std::vector<Eigen::Vector3d> scan_normals(const Mesh& scan, int k) {
   NormalOptions pca;
@@ -339,13 +407,20 @@ InspectResult run_inspect(const InspectOptions& options) {
 
   const std::vector<std::vector<std::size_t>> features = detail::cylinder_features(cad.faces);
   assign_points(scan.vertices, normals, cad, options, result);
-  if (!options.datum_faces.empty()) apply_datums(cad, features, options, scan.vertices, normals, result);
+  std::vector<Eigen::Vector3d> initial_points, initial_normals;  // with datums, for the best fit beside them
+  const Eigen::Isometry3d T_initial = result.T_ref_scan;
+  if (!options.datum_faces.empty()) {
+    initial_points = scan.vertices;
+    initial_normals = normals;
+    apply_datums(cad, features, options, scan.vertices, normals, result);
+  }
   measure_faces(scan.vertices, normals, cad, features, options, result);
   warn_unassigned(result);
   if (!options.datum_faces.empty()) {
     const CadFace& primary = cad.faces[options.datum_faces[0] - 1];
     for (FaceInspection& f : result.faces) add_perpendicularity(primary, f);
     for (FeatureInspection& f : result.features) add_perpendicularity(primary, f.measured);
+    measure_at_best_fit(cad, features, options, initial_points, initial_normals, T_initial, result);
   }
   if (!tolerances.faces.empty() || !tolerances.features.empty()) detail::judge_tolerances(tolerances, result);
   result.ok = result.assigned > 0;

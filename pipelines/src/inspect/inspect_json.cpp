@@ -51,7 +51,23 @@ nlohmann::json nominal_json(const CadFace& f) {
   return j;
 }
 
+// A face's or feature's figures at the best fit: its JSON less what does not depend on the pose.
+nlohmann::json best_fit_figures(nlohmann::json j) {
+  for (const char* key : {"id", "type", "deviation_to", "form_trim", "nominal", "tolerance", "kind", "faces",
+                          "nominal_diameter_mm", "nominal_radius_mm", "nominal_half_angle_deg",
+                          "nominal_minor_radius_mm"}) {
+    j.erase(key);
+  }
+  return j;
+}
+
 }  // namespace
+
+const char* best_fit_pose_name(const std::string& alignment) {
+  if (alignment == "best-fit") return "the initial best fit (--align best-fit)";
+  if (alignment == "transform") return "point-to-surface ICP from the transform";
+  return "--align best-fit on the scan as read";
+}
 
 nlohmann::json face_json(const FaceInspection& f) {
   const bool seen = f.points > 0;
@@ -152,10 +168,20 @@ nlohmann::json feature_json(const FeatureInspection& f) {
 }
 
 nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& r, const std::string& units) {
+  const InspectBestFit& best = r.best_fit;
+  const bool beside = best.computed && best.converged;
   nlohmann::json faces = nlohmann::json::array();
-  for (const FaceInspection& f : r.faces) faces.push_back(face_json(f));
+  for (std::size_t k = 0; k < r.faces.size(); ++k) {
+    faces.push_back(face_json(r.faces[k]));
+    if (best.computed) faces.back()["best_fit"] = beside ? best_fit_figures(face_json(best.faces[k])) : nullptr;
+  }
   nlohmann::json features = nlohmann::json::array();
-  for (const FeatureInspection& f : r.features) features.push_back(feature_json(f));
+  for (std::size_t k = 0; k < r.features.size(); ++k) {
+    features.push_back(feature_json(r.features[k]));
+    if (best.computed) {
+      features.back()["best_fit"] = beside ? best_fit_figures(feature_json(best.features[k])) : nullptr;
+    }
+  }
   nlohmann::json j = {{"scan", options.scan_path},
                       {"reference", options.reference_path},
                       {"transform", json_path_or_null(options.transform_path)},
@@ -184,6 +210,12 @@ nlohmann::json inspect_json(const InspectOptions& options, const InspectResult& 
                    {"T_datum_initial", json_of(r.T_datum_initial)},
                    {"moved_mm", r.datum_moved_mm},
                    {"rotation_deg", degrees(Eigen::AngleAxisd(r.T_datum_initial.linear()).angle())}};
+    j["best_fit"] = {{"pose", best_fit_pose_name(r.alignment)},
+                     {"converged", best.converged},
+                     {"T_ref_scan", beside ? json_of(best.T_ref_scan) : nlohmann::json(nullptr)},
+                     {"assigned", beside ? nlohmann::json(best.assigned) : nlohmann::json(nullptr)},
+                     {"displacement_mm", number_or_null(beside, best.displacement_mm)},
+                     {"angle_deg", number_or_null(beside, best.angle_deg)}};
   } else {
     j["datums"] = nullptr;
   }

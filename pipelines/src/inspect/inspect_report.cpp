@@ -6,6 +6,7 @@
 
 #include "conform/core/constants.h"
 #include "conform/pipelines/common/deviation_view.h"
+#include "conform/pipelines/inspect/inspect_json.h"
 
 namespace conform {
 namespace {
@@ -52,24 +53,39 @@ std::string feature_text(const FaceInspection& f) {
   return f.fit_note;
 }
 
+// With datums, the figures at the best fit beside the datum frame's (docs/inspect.md, Output).
+bool best_fit_beside(const InspectResult& r) { return r.best_fit.computed && r.best_fit.converged; }
+
+// A face's mean, std, min, max and form cells, tied to the JSON object at `at`.
+void add_deviation_cells(const FaceInspection& f, const std::string& at, std::vector<html::Cell>& row) {
+  if (f.points > 0) {
+    row.push_back(html::number(f.deviation.mean_mm, 4, at + "mean_mm"));
+    row.push_back(html::number(f.deviation.std_mm, 4, at + "std_mm"));
+    row.push_back(html::number(f.deviation.min_mm, 4, at + "min_mm"));
+    row.push_back(html::number(f.deviation.max_mm, 4, at + "max_mm"));
+  } else {
+    row.insert(row.end(), 4, html::Cell("-"));
+  }
+  row.push_back(f.form_measured ? html::number(f.form.width_mm, 4, at + "form_mm") : html::Cell("-"));
+}
+
 html::Table faces_table(const InspectResult& r) {
+  const bool beside = best_fit_beside(r);
   html::Table t;
   t.title = "Faces";
-  t.header = {"face", "type", "points", "mean mm", "std mm", "min mm", "max mm", "form mm", "feature", "verdict"};
+  t.header = {"face", "type", "points", "mean mm", "std mm", "min mm", "max mm", "form mm"};
+  if (beside) {
+    t.header.insert(t.header.end(), {"best-fit mean mm", "best-fit std mm", "best-fit min mm", "best-fit max mm",
+                                     "best-fit form mm"});
+  }
+  t.header.insert(t.header.end(), {"feature", "verdict"});
   for (std::size_t k = 0; k < r.faces.size(); ++k) {
     const FaceInspection& f = r.faces[k];
     const std::string at = "/faces/" + std::to_string(k) + "/";
     std::vector<html::Cell> row = {html::count(f.id, at + "id"), std::string(to_string(f.nominal.type)),
                                    html::count(f.points, at + "points")};
-    if (f.points > 0) {
-      row.push_back(html::number(f.deviation.mean_mm, 4, at + "mean_mm"));
-      row.push_back(html::number(f.deviation.std_mm, 4, at + "std_mm"));
-      row.push_back(html::number(f.deviation.min_mm, 4, at + "min_mm"));
-      row.push_back(html::number(f.deviation.max_mm, 4, at + "max_mm"));
-    } else {
-      row.insert(row.end(), 4, html::Cell("-"));
-    }
-    row.push_back(f.form_measured ? html::number(f.form.width_mm, 4, at + "form_mm") : html::Cell("-"));
+    add_deviation_cells(f, at, row);
+    if (beside) add_deviation_cells(r.best_fit.faces[k], at + "best_fit/", row);
     row.push_back(feature_text(f));
     row.push_back(!f.verdict            ? "-"
                   : !f.verdict->measured ? "not measured"
@@ -81,10 +97,13 @@ html::Table faces_table(const InspectResult& r) {
 }
 
 html::Table features_table(const InspectResult& r) {
+  const bool beside = best_fit_beside(r);
   html::Table t;
   t.title = "Holes and bosses";
   t.header = {"feature", "kind", "faces", "points", "diameter mm", "nominal mm", "position mm", "perpendicularity mm",
-              "cylindricity mm", "verdict"};
+              "cylindricity mm"};
+  if (beside) t.header.insert(t.header.end(), {"best-fit diameter mm", "best-fit position mm"});
+  t.header.push_back("verdict");
   for (std::size_t k = 0; k < r.features.size(); ++k) {
     const FeatureInspection& feature = r.features[k];
     const FaceInspection& f = feature.measured;
@@ -103,6 +122,15 @@ html::Table features_table(const InspectResult& r) {
       row.push_back(html::number(f.form.width_mm, 4, at + "form_mm"));
     } else {
       row.insert(row.end(), 5, html::Cell(f.fit_note.empty() ? "-" : f.fit_note));
+    }
+    if (beside) {
+      const FaceInspection& b = r.best_fit.features[k].measured;
+      if (b.fitted) {
+        row.push_back(html::number(2.0 * b.radius_mm, 4, at + "best_fit/diameter_mm"));
+        row.push_back(html::number(b.position_mm, 4, at + "best_fit/position_mm"));
+      } else {
+        row.insert(row.end(), 2, html::Cell("-"));
+      }
     }
     row.push_back(!feature.verdict            ? "-"
                   : !feature.verdict->measured ? "not measured"
@@ -187,6 +215,16 @@ html::Page inspect_report(const InspectOptions& options, const InspectResult& r,
       "Form: the width of the zone about the least-squares plane or cylinder (else the nominal surface) holding all "
       "but the trimmed share of the residuals (docs/inspect.md). In the view each measured face is a layer of its own "
       "(red: fails its tolerances, shown; green: passes; grey: not toleranced).");
+  if (best_fit_beside(r)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "With datums every figure is in the datum frame; the best-fit columns give the same figures at the "
+                  "best fit of the whole scan (%s), which is %.4f mm (the largest move of a scan point) and %.4f deg "
+                  "from the datum frame (a turn about a part's symmetry axis changes no figure).",
+                  best_fit_pose_name(r.alignment),
+                  r.best_fit.displacement_mm, r.best_fit.angle_deg);
+    faces.paragraphs.push_back(text);
+  }
   faces.tables.push_back(faces_table(r));
   if (!r.features.empty()) faces.tables.push_back(features_table(r));
   page.sections.push_back(std::move(faces));

@@ -153,6 +153,20 @@ struct FeatureInspection {
   std::optional<FeatureVerdict> verdict;  // with --tolerances naming one of its faces with a size or position limit
 };
 
+// With datums, the figures beside the datum frame's at the best fit: the initial pose itself after --align best-fit,
+// else point-to-surface ICP against the CAD started from the initial pose (align's fine fit against a mesh,
+// pipelines/align/align.h defaults). Every point is assigned again at that pose; no tolerances are judged there.
+struct InspectBestFit {
+  bool computed = false;   // datums were given
+  bool converged = false;  // false: the ICP did not converge; no figures
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();  // the best fit's pose, mm
+  double displacement_mm = 0.0;  // the largest distance of a scan point between the datum frame and the best fit
+  double angle_deg = 0.0;        // the turn between the two poses
+  std::size_t assigned = 0;      // points on some face at the best fit
+  std::vector<FaceInspection> faces;        // as InspectResult::faces, at the best fit
+  std::vector<FeatureInspection> features;  // as InspectResult::features, at the best fit
+};
+
 struct InspectResult {
   std::size_t scan_points = 0;
   std::size_t assigned = 0;          // points on some face
@@ -169,6 +183,7 @@ struct InspectResult {
   // far each datum's fitted plane moved along its nominal normal, mm.
   Eigen::Isometry3d T_datum_initial = Eigen::Isometry3d::Identity();
   std::vector<double> datum_moved_mm;
+  InspectBestFit best_fit;           // with datums: the figures at the best fit, beside the datum frame's
   bool ok = false;                   // the job ran to its figures (false: best fit refused, or no point assigned)
   std::string termination;           // "ok", or why not
   std::vector<FaceInspection> faces;   // every face of the CAD, by id
