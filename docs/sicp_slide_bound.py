@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""How much of the harder oval's slide along its edge can any registration recover? (docs/sicp.md, "Measured")
+"""How much of the harder oval's slide along its edge can any registration recover? (docs/measurements/sicp.md, the oracle bound; summarised in docs/sicp.md, "Limits")
 
 The generator's in-plane field (smooth_field in datasets/src/panel_shape.cpp, re-implemented here for the x and y
 axes) is independent of its out-of-plane field, so a scan measures the in-plane motion only through the edge, and
