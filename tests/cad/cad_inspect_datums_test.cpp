@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -22,6 +21,7 @@
 
 #include "cad_shapes.h"
 #include "conform/core/cad_faces.h"
+#include "conform/core/random.h"
 #include "conform/core/constants.h"
 #include "conform/core/transform_io.h"
 #include "conform/pipelines/inspect/inspect.h"
@@ -105,8 +105,7 @@ class InspectDatums : public ::testing::Test {
   // The made part scanned (seeded), in a frame of its own: p_scan = T_scan_ref p.
   void scan(std::uint64_t seed) {
     const test::SurfaceSample s = test::sample_surface(part_, 30000, 0.0, seed);
-    std::mt19937_64 random(seed + 7);
-    std::normal_distribution<double> noise(0.0, kNoise);
+    Random random(seed + 7);
     T_scan_ref_ = Eigen::Isometry3d::Identity();
     T_scan_ref_.rotate(Eigen::AngleAxisd(radians(0.2), Eigen::Vector3d(1, -2, 3).normalized()));
     T_scan_ref_.translation() = Eigen::Vector3d(0.15, -0.1, 0.12);
@@ -117,7 +116,7 @@ class InspectDatums : public ::testing::Test {
       if (f.type == CadSurfaceType::kPlane && f.axis.y() < -0.5) continue;
       double error = 0.0;
       if (f.type == CadSurfaceType::kCylinder && f.origin_mm.x() < 40.0) error = test::hole_error(kHoleA, s.points[i]);
-      points.push_back(T_scan_ref_ * (s.points[i] + (error + noise(random)) * s.normals[i]));
+      points.push_back(T_scan_ref_ * (s.points[i] + (error + kNoise * random.normal()) * s.normals[i]));
       point_face_.push_back(static_cast<std::size_t>(s.face[i]));
     }
     test::write_scan(dir_.file("scan.ply"), points);

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +23,7 @@
 
 #include "cad_shapes.h"
 #include "conform/core/cad_faces.h"
+#include "conform/core/random.h"
 #include "conform/pipelines/inspect/inspect.h"
 #include "conform/pipelines/inspect/inspect_json.h"
 #include "conform/pipelines/inspect/inspect_report.h"
@@ -66,8 +66,7 @@ struct Part {
 // (-1, -1)/sqrt 2), no bottom, no side y = 0, 200 stray points 3-8 mm above the top.
 std::vector<Eigen::Vector3d> scan_of(const TopoDS_Shape& shape, const CadFaces& cad, std::uint64_t seed) {
   const test::SurfaceSample s = test::sample_surface(shape, 40000, 0.0, seed);
-  std::mt19937_64 random(seed + 100);
-  std::normal_distribution<double> noise(0.0, kNoise);
+  Random random(seed + 100);
   const Eigen::Vector2d unseen = Eigen::Vector2d(-1.0, -1.0).normalized();
   std::vector<Eigen::Vector3d> out;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
@@ -80,10 +79,12 @@ std::vector<Eigen::Vector3d> scan_of(const TopoDS_Shape& shape, const CadFaces& 
     } else if (f.axis.z() < -0.5 || f.axis.y() < -0.5) {
       continue;
     }
-    out.push_back(s.points[i] + (error + noise(random)) * s.normals[i]);
+    out.push_back(s.points[i] + (error + kNoise * random.normal()) * s.normals[i]);
   }
-  std::uniform_real_distribution<double> x_of(5.0, 75.0), y_of(5.0, 55.0), z_of(23.0, 28.0);
-  for (int i = 0; i < 200; ++i) out.emplace_back(x_of(random), y_of(random), z_of(random));
+  for (int i = 0; i < 200; ++i) {
+    const double x = random.uniform(5.0, 75.0), y = random.uniform(5.0, 55.0), z = random.uniform(23.0, 28.0);
+    out.emplace_back(x, y, z);
+  }
   return out;
 }
 

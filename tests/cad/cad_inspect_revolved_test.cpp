@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,7 @@
 
 #include "cad_shapes.h"
 #include "conform/core/cad_faces.h"
+#include "conform/core/random.h"
 #include "conform/core/constants.h"
 #include "conform/pipelines/inspect/inspect.h"
 #include "inspect_scans.h"
@@ -73,18 +73,17 @@ TEST(InspectRevolved, ConeHalfAngleAxisAndForm) {
   for (const std::uint64_t seed : kSeeds) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const test::SurfaceSample s = test::sample_surface(cone, 20000, 0.0, seed);
-    std::mt19937_64 random(seed + 50);
-    std::normal_distribution<double> noise(0.0, kNoise);
+    Random random(seed + 50);
     std::vector<Eigen::Vector3d> points;
     std::vector<double> form_truth;  // the waviness and noise of each cone point: what is left about the made cone
     for (std::size_t i = 0; i < s.points.size(); ++i) {
       const Eigen::Vector3d& p = s.points[i];
       if (static_cast<std::size_t>(s.face[i]) != cone_face) {
-        points.push_back(p + noise(random) * s.normals[i]);
+        points.push_back(p + kNoise * random.normal() * s.normals[i]);
         continue;
       }
       if (p.z() < 3.0 || p.z() > 17.0) continue;
-      const double form = kWave * std::cos(3.0 * theta_of(p)) + noise(random);
+      const double form = kWave * std::cos(3.0 * theta_of(p)) + kNoise * random.normal();
       points.push_back(p + (form - made_distance(p)) * s.normals[i]);
       form_truth.push_back(form);
     }
@@ -128,14 +127,13 @@ TEST(InspectRevolved, TorusRadiiCentreAndForm) {
   for (const std::uint64_t seed : kSeeds) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const test::SurfaceSample s = test::sample_surface(torus, 20000, 0.0, seed);
-    std::mt19937_64 random(seed + 60);
-    std::normal_distribution<double> noise(0.0, kNoise);
+    Random random(seed + 60);
     std::vector<Eigen::Vector3d> points;
     std::vector<double> form_truth;
     for (std::size_t i = 0; i < s.points.size(); ++i) {
       const Eigen::Vector3d& p = s.points[i];
       if (p.z() < -1.0) continue;
-      const double form = kWave * std::cos(3.0 * theta_of(p)) + noise(random);
+      const double form = kWave * std::cos(3.0 * theta_of(p)) + kNoise * random.normal();
       points.push_back(p + (form - made_distance(p)) * s.normals[i]);
       form_truth.push_back(form);
     }
