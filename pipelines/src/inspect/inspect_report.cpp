@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "conform/core/constants.h"
 #include "conform/pipelines/common/deviation_view.h"
@@ -69,6 +70,12 @@ void add_deviation_cells(const FaceInspection& f, const std::string& at, std::ve
   row.push_back(f.form_measured ? html::number(f.form.width_mm, 4, at + "form_mm") : html::Cell("-"));
 }
 
+// A face's or a feature's verdict in its table: "-" when not toleranced.
+template <typename Verdict>
+html::Cell verdict_cell(const std::optional<Verdict>& verdict) {
+  return !verdict ? "-" : !verdict->measured ? "not measured" : verdict->pass ? "pass" : "FAIL";
+}
+
 html::Table faces_table(const InspectResult& r) {
   const bool beside = best_fit_beside(r);
   html::Table t;
@@ -87,10 +94,7 @@ html::Table faces_table(const InspectResult& r) {
     add_deviation_cells(f, at, row);
     if (beside) add_deviation_cells(r.best_fit.faces[k], at + "best_fit/", row);
     row.push_back(feature_text(f));
-    row.push_back(!f.verdict            ? "-"
-                  : !f.verdict->measured ? "not measured"
-                  : f.verdict->pass      ? "pass"
-                                         : "FAIL");
+    row.push_back(verdict_cell(f.verdict));
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -132,10 +136,7 @@ html::Table features_table(const InspectResult& r) {
         row.insert(row.end(), 2, html::Cell("-"));
       }
     }
-    row.push_back(!feature.verdict            ? "-"
-                  : !feature.verdict->measured ? "not measured"
-                  : feature.verdict->pass      ? "pass"
-                                               : "FAIL");
+    row.push_back(verdict_cell(feature.verdict));
     t.rows.push_back(std::move(row));
   }
   return t;
