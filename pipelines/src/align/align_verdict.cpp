@@ -228,14 +228,12 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
             "the scan fixes the pose only to %.3g mm at the part (the largest predicted std of a scan point's "
             "displacement; %.3g mm and %.3g deg along and about an axis), ",
             v.pose_std_mm, loose.std_mm, loose.std_deg) +
-        format(options.pose_tolerance_mm > 0.0 ? "against the asked %.3g mm"
-               : options.tolerance_mm > 0.0    ? "against %.3g mm, a sixth of the tolerance"
-                                            : reference.has_surface()
-                   ? "against sqrt(3) times the noise of the scan or of the fit, whichever is larger (at least 0.02 "
-                     "mm), %.3g mm"
-                   : "against 2.7 times the noise of the scan or of the fit, whichever is larger (at least 0.02 mm), "
-                     "%.3g mm",
-               v.pose_tolerance_mm);
+        (options.pose_tolerance_mm > 0.0 ? format("against the asked %.3g mm", v.pose_tolerance_mm)
+         : options.tolerance_mm > 0.0
+             ? format("against %.3g mm, a sixth of the tolerance", v.pose_tolerance_mm)
+             : format("against %.3g times the noise of the scan or of the fit, whichever is larger (at least %.3g "
+                      "mm), %.3g mm",
+                      share, kFinestScannerNoiseMm, v.pose_tolerance_mm));
     if (coarse_start) {
       // Estimated from a start a coarse search found: a fit that loose may sit in a neighbouring minimum (the
       // sparse-walls and noisy matrix cases: 1-2.6 mm off with residuals at the noise), and nothing measured that it
