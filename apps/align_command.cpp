@@ -22,6 +22,13 @@ namespace conform::app {
 namespace {
 
 
+// A default as --help shows it: three significant digits.
+std::string shown(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
 std::string vector_text(const Eigen::Vector3d& v, int decimals) {
   char buffer[128];
   std::snprintf(buffer, sizeof buffer, "(%.*f, %.*f, %.*f)", decimals, v.x(), decimals, v.y(), decimals, v.z());
@@ -96,8 +103,9 @@ class AlignCommand : public Command {
                  "(from the residuals, the surface's constraint and, against a cloud, the fit's bias and the normals' "
                  "model); a pose from "
                  "--init pca/fpfh that misses it is refused (exit 1), one from a start you gave is 'check'; 0: a sixth "
-                 "of --tolerance when given, else 2.7 times (against a mesh sqrt(3) times) the noise of the scan or of "
-                 "the fit, whichever is larger (at least 0.02 mm)");
+                 "of --tolerance when given, else " + shown(kAlignCloudPoseNoiseShare) + " times (against a mesh " +
+                     shown(kAlignMeshPoseNoiseShare) + " times) the noise of the scan or of the fit, whichever is "
+                     "larger (at least " + shown(kAlignFinestNoiseMm) + " mm)");
     c.add_option("--tolerance", options_.tolerance_mm,
                  "The inspection tolerance +-mm the pose serves (as compare --tolerance); sets the default "
                  "--pose-tolerance-mm; 0: not stated");

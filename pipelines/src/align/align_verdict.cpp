@@ -28,22 +28,22 @@ constexpr double kMinEstimatedOverlap = 0.2;
 // The asked displacement std, in units of the scatter the data show: the larger of the scan's own (local) noise and
 // the fit's residual noise (two real scans of one surface disagree by 2.0-2.4 times their local noise: calibration,
 // sampling; the bunny range scans). Calibrated with the fit's bias and the reference model's uncertainty counted
-// (align_consistency.h), which made the std honest (the error within 3 std on 115 of 120 seeds of the workpiece
+// (align_consistency.h), which made the std honest (the error within 3 std on 114 of 120 seeds of the workpiece
 // matrix on streams 0-2, and on 115 of 120 on streams 3-5): the closest wrong pose there has a std of 3.1 (streams
 // 0-2) and 3.4 (3-5) times the residual noise, 1.15 times this share, the margin the former share sqrt(3) had over
 // the closest wrong pose before the model term was counted; the right bunny poses have 0.7-2.2 times it
 // (docs/measurements/real_pairs.md). A deviation measured at the worst-placed scan point then scatters at most
 // sqrt(1 + 2.7^2) = 2.9 times the residual noise.
-constexpr double kPoseNoiseShare = 2.7;
+constexpr double kPoseNoiseShare = kAlignCloudPoseNoiseShare;
 // Against a mesh (the nominal part: no model terms to count, the std honest on the mesh matrices) the former share,
 // sqrt(3): the pose may at most double the std of a deviation at the worst-placed point (sqrt(1 + 3) = 2).
-constexpr double kMeshPoseNoiseShare = 1.7320508075688772;
+constexpr double kMeshPoseNoiseShare = kAlignMeshPoseNoiseShare;
 // A stated tolerance +-t asks a pose displacement std of t / 6: three std use at most half of the tolerance.
 constexpr double kToleranceStds = 6.0;
 // The noise the asked displacement std is scaled from is never taken below this, mm: the finest scanners conform
 // serves (metrology-grade handheld and profile scanners) read to about 0.02 mm; a noise-free synthetic scan against
 // a tessellated reference would otherwise be asked for micrometres that the reference's own chords do not give.
-constexpr double kFinestScannerNoiseMm = 0.02;
+constexpr double kFinestScannerNoiseMm = kAlignFinestNoiseMm;
 // The points the displacement std is evaluated at: an even stride of the scan (its extremes decide it).
 constexpr std::size_t kPoseStdPoints = 5000;
 const char* const kWhatToDo =
