@@ -24,7 +24,8 @@ struct SicpJointOptions {
   // times the data terms of one segment when its disagreement equals a data residual. > 0.
   // Too strong and the segments cannot follow a stretch along a straight edge (which no segment sees on its own);
   // too weak and a segment's slide along a gently curved edge is left to noise. 0.01 from the seed sweep in
-  // docs/sicp.md (plate, nose cone, harder oval and cut-out): 0.1 dragged corner segments off by up to 1.1 mm.
+  // docs/measurements/sicp.md (plate, nose cone, harder oval and cut-out, seeds 2-4): 0.1 passed a corner segment's
+  // error on through the overlaps, the harder cut-out's peak off the path 0.16 -> 0.64 mm.
   double weight = 0.01;
   // Weight of each segment's slide along the edge (from its own ICP's pose) against its data, the same scale as
   // `weight`: the data leave that slide nearly free on a gently curved edge, and without it the whole chain of
