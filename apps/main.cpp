@@ -2,6 +2,8 @@
 // Parses the command line, runs the chosen subcommand and maps what happened to an exit code (DESIGN.md):
 // 0 success, 1 the job ran but did not succeed, 2 bad usage or bad input.
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <exception>
 #include <iostream>
@@ -27,6 +29,17 @@ std::vector<CommandEntry>& command_registry() {
 namespace {
 
 constexpr int kExitBadInput = 2;
+
+// A job allocates and frees arrays of tens of megabytes many times (trees, surface samples, normals, pairs). By
+// default glibc maps each one afresh and returns it on free, so every reuse pays its page faults again (an eighth of
+// align's CPU on the bench's mesh pair: docs/measurements/align.md, Speed). Kept in the heap instead, up to glibc's
+// largest threshold (32 MiB on 64-bit), freed memory kept for the next array. Outputs are unchanged.
+void keep_large_arrays_in_heap() {
+  constexpr int kMiB = 1 << 20;
+  mallopt(M_MMAP_THRESHOLD, 32 * kMiB);
+  mallopt(M_TRIM_THRESHOLD, 256 * kMiB);
+  mallopt(M_TOP_PAD, 64 * kMiB);
+}
 
 struct Bound {
   CLI::App* app;
@@ -62,6 +75,7 @@ CLI::App* subcommand_for(CLI::App& root, const std::string& path, const std::str
 
 int main(int argc, char** argv) {
   using namespace conform::app;
+  keep_large_arrays_in_heap();
   // PCL's readers print their own complaints; conform reports errors itself, once, naming the file.
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
 
