@@ -52,6 +52,8 @@ class GeneratePanelCommand : public Command {
                  "Share of the scan moved 1-20 mm off the surface (stray points), in [0, 0.2]");
     c.add_option("--stripes", o_.stripe_spacing_mm,
                  "A laser-stripe scan: the points on planes across x this far apart, mm (0: spread evenly)");
+    c.add_option("--stripe-angle-deg", o_.stripe_angle_deg,
+                 "The stripes' planes turned about z from across x by this angle, degrees, in [-90, 90]");
     c.add_option("--rotation-deg", rotation_, "The part's rigid motion: rotation vector, degrees (3 numbers)")
         ->expected(3);
     c.add_option("--translation", translation_, "The part's rigid motion: translation, mm (3 numbers)")->expected(3);

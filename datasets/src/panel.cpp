@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/datasets/panel_shape.h"
 #include "conform/core/random.h"
@@ -144,6 +145,8 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
   double area = 0.0;
   for (std::size_t f = 0; f < g.mesh.faces.size(); ++f) cumulative.push_back(area += face_area(g.mesh, f));
   const std::int64_t count = o.scan_points > 0 ? o.scan_points : default_scan_points(o.shape);
+  const double stripe_angle = o.stripe_angle_deg / kDegPerRad;
+  const Eigen::Vector3d stripe_normal(std::cos(stripe_angle), std::sin(stripe_angle), 0.0);
   for (std::int64_t k = 0; k < count; ++k) {
     const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), pick.uniform() * area);
     const std::size_t f =
@@ -154,12 +157,13 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
     const auto V = [&](int c) { return g.mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])]; };
     Eigen::Vector3d p = V(0) + u * (V(1) - V(0)) + v * (V(2) - V(0));
     bool across_stripes = false;  // a face nearly parallel to the stripes' planes: no stripe crosses it
-    if (o.stripe_spacing_mm > 0.0) {  // along the face's plane to the nearest stripe: x changes, the face holds
+    if (o.stripe_spacing_mm > 0.0) {  // along the face's plane to the nearest stripe: d . p changes, the face holds
       const Eigen::Vector3d n = face_normal(g.mesh, f);
-      const Eigen::Vector3d along = Eigen::Vector3d::UnitX() - n.x() * n;
-      across_stripes = along.x() < 0.1;
-      const double stripe_x = std::round(p.x() / o.stripe_spacing_mm) * o.stripe_spacing_mm;
-      if (!across_stripes) p += (stripe_x - p.x()) / along.x() * along;
+      const Eigen::Vector3d along = stripe_normal - n.dot(stripe_normal) * n;
+      across_stripes = along.dot(stripe_normal) < 0.1;
+      const double s = p.dot(stripe_normal);
+      const double stripe = std::round(s / o.stripe_spacing_mm) * o.stripe_spacing_mm;
+      if (!across_stripes) p += (stripe - s) / along.dot(stripe_normal) * along;
     }
     const double z = noise.normal();  // drawn for every point, so that holes do not shift the others' noise
     const bool is_stray = stray.uniform() < o.stray_fraction;

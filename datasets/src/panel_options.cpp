@@ -73,6 +73,8 @@ bool check_sampling(const PanelOptions& o, std::string* error) {
   if (!std::isfinite(o.stripe_spacing_mm) || (o.stripe_spacing_mm != 0.0 && (o.stripe_spacing_mm < 0.2 ||
                                                                              o.stripe_spacing_mm > 20.0)))
     return fail(error, "stripe spacing must be 0 or in [0.2, 20] mm, got " + number(o.stripe_spacing_mm));
+  if (!std::isfinite(o.stripe_angle_deg) || o.stripe_angle_deg < -90.0 || o.stripe_angle_deg > 90.0)
+    return fail(error, "stripe angle must be in [-90, 90] deg, got " + number(o.stripe_angle_deg));
   if (!std::isfinite(o.dent_depth_mm) || std::abs(o.dent_depth_mm) > 100.0)
     return fail(error, "dent depth must be in [-100, 100] mm, got " + number(o.dent_depth_mm));
   if (!positive(o.dent_width_mm) || o.dent_width_mm > 1000.0)

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "conform/core/constants.h"
 #include "conform/core/error.h"
 #include "conform/core/mesh_boundary.h"
 #include "conform/datasets/panel_shape.h"
@@ -169,6 +170,39 @@ TEST(Panel, StripeScansLieOnTheirPlanes) {
   PanelOptions bad = small(PanelShape::kPlate);
   bad.stripe_spacing_mm = 0.1;
   EXPECT_THROW(generate_panel(bad), Error);
+}
+
+// Stripes at an angle: every point on a plane d . p = k spacing, d = (cos a, sin a, 0), and none on the planes across
+// x when the angle is not 0 (a wrong turn would leave the points on x = k spacing or off both); 0 deg gives the same
+// scan as no angle. Out of [-90, 90] deg: refused.
+TEST(Panel, StripesAtAnAngleLieOnTheirPlanes) {
+  PanelOptions o = small(PanelShape::kPlate);
+  o.sag_mm = o.bend_mm = o.twist_mm = 0.0;
+  o.rotation_deg.setZero();
+  o.translation_mm.setZero();
+  o.noise_mm = 0.0;
+  o.stripe_spacing_mm = 3.0;
+  const PanelData straight = generate_panel(o);
+  for (const double angle : {30.0, -45.0, 90.0}) {
+    o.stripe_angle_deg = angle;
+    const PanelData d = generate_panel(o);
+    EXPECT_GT(d.scan.size(), 18000u) << angle;
+    const double a = angle / kDegPerRad;
+    std::size_t on_x_planes = 0;
+    for (const pcl::PointXYZ& p : d.scan.points) {
+      const double s = std::cos(a) * static_cast<double>(p.x) + std::sin(a) * static_cast<double>(p.y);
+      EXPECT_NEAR(s, 3.0 * std::round(s / 3.0), 2e-3) << angle;
+      const double x = static_cast<double>(p.x);
+      if (std::abs(x - 3.0 * std::round(x / 3.0)) < 1e-3) ++on_x_planes;
+    }
+    EXPECT_LT(on_x_planes, d.scan.size() / 20) << angle;
+  }
+  o.stripe_angle_deg = 0.0;
+  const PanelData again = generate_panel(o);
+  ASSERT_EQ(again.scan.size(), straight.scan.size());
+  for (std::size_t k = 0; k < again.scan.size(); ++k) EXPECT_EQ(again.scan.points[k].x, straight.scan.points[k].x);
+  o.stripe_angle_deg = 91.0;
+  EXPECT_THROW(generate_panel(o), Error);
 }
 
 // scan_points 0: each shape's default_scan_points (the number `generate plate --help` and `nosecone --help` state).

@@ -34,6 +34,7 @@ nlohmann::json options_json(const PanelOptions& o) {
                       {"scan_flank", o.scan_flank},
                       {"stray_fraction", o.stray_fraction},
                       {"stripe_spacing_mm", o.stripe_spacing_mm},
+                      {"stripe_angle_deg", o.stripe_angle_deg},
                       {"seed", o.seed}};
   if (o.shape == PanelShape::kPlate) {
     j["plate"] = {{"radius_x_mm", o.plate_radius_x_mm},
