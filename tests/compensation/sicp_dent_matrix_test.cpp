@@ -6,9 +6,10 @@
 // too). Release build only (CI's sanitizer stage skips *Matrix*). SICP_DENT_SWEEP=1 runs every depth x width x noise
 // x seed on the three (324 dented paths, the docs' table) and 150 undented paths instead of the covering subsets
 // below. The known limit, a 0.5 mm deep dent under 0.15 mm noise (its expected significance near the check's 5
-// standard errors at 0.5-0.65 scan points per mm^2; docs/sicp.md), is counted: trusted beyond the bar on at most as
-// many paths as measured.
+// standard errors at 0.45-0.75 scan points per mm^2 on the face; docs/sicp.md), is counted: trusted beyond the bar
+// on at most as many paths as measured (seeds 31-33: one on each opening, in the subsets and in the sweep).
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -33,6 +34,15 @@ constexpr double kDepth[] = {0.5, 1.0, 1.5};
 constexpr double kWidth[] = {10.0, 20.0, 30.0};
 constexpr std::uint64_t kSeeds[] = {31, 32, 33};
 constexpr double kDentAt[] = {0.3, 0.55, 0.8};  // per seed: where on the oval (share of a turn from +x)
+
+// SICP_DENT_FIRST_SEED=N runs the matrix on another stream: dents on seeds N to N + 2 (at the same places), undented
+// panels on N to N + 9 (with SICP_DENT_SWEEP=1). The counts at the limit are asserted on the default stream only.
+std::uint64_t first_seed() {
+  const char* text = std::getenv("SICP_DENT_FIRST_SEED");
+  return text != nullptr ? std::strtoull(text, nullptr, 10) : kSeeds[0];
+}
+std::uint64_t seed_of(int s) { return first_seed() + static_cast<std::uint64_t>(s); }
+bool default_stream() { return first_seed() == kSeeds[0]; }
 
 std::string label(const PanelOptions& o, double depth, double width, double noise, std::uint64_t seed) {
   char text[96];
@@ -66,13 +76,13 @@ void dent_matrix(PanelShape shape, PlateOpening opening, int max_at_limit, int m
       for (int d = 0; d < 3; ++d) {
         for (int w = 0; w < 3; ++w) {
           if (!sweep && w != (s + n + d) % 3 && !(d == 0 && w == 0)) continue;
-          PanelOptions o = panel(shape, opening, kSeeds[s]);
+          PanelOptions o = panel(shape, opening, seed_of(s));
           o.noise_mm = kNoise[n];
           o.dent_depth_mm = kDepth[d];
           o.dent_width_mm = kWidth[w];
           o.dent_at = kDentAt[s];
           const PanelRun r = run(o);
-          const std::string what = label(o, kDepth[d], kWidth[w], kNoise[n], kSeeds[s]);
+          const std::string what = label(o, kDepth[d], kWidth[w], kNoise[n], seed_of(s));
           ++dents;
           // The documented limit (docs/sicp.md): a 0.5 mm deep dent at 0.15 mm noise may be trusted beyond the bar
           // (its expected significance is near the check's 5 standard errors); counted, not more than measured.
@@ -91,19 +101,21 @@ void dent_matrix(PanelShape shape, PlateOpening opening, int max_at_limit, int m
     }
   }
   std::printf("%d of %d dented paths refused, %d trusted beyond the bar at the limit\n", refused, dents, at_limit);
-  EXPECT_LE(at_limit, sweep ? max_at_limit_swept : max_at_limit);
+  if (default_stream()) {
+    EXPECT_LE(at_limit, sweep ? max_at_limit_swept : max_at_limit);
+  }
 }
 
 TEST(SicpDentMatrix, DentsAreCaughtAtEveryNoiseLevel) { dent_matrix(PanelShape::kPlate, PlateOpening::kEllipse, 1, 1); }
 
 TEST(SicpDentMatrix, DentsOnTheCutOutAreCaught) {
-  dent_matrix(PanelShape::kPlate, PlateOpening::kRoundedRectangle, 2, 2);
+  dent_matrix(PanelShape::kPlate, PlateOpening::kRoundedRectangle, 1, 1);
 }
 
 // The nose cone (its window's sides, away from the corners): as the cut-out, every depth at the lowest and the
 // highest noise, the width cycling, and 0.5 x 10 mm (24 paths); SICP_DENT_SWEEP=1: 108.
 TEST(SicpDentMatrix, DentsOnTheNoseConeAreCaught) {
-  dent_matrix(PanelShape::kNoseCone, PlateOpening::kEllipse, 2, 3);
+  dent_matrix(PanelShape::kNoseCone, PlateOpening::kEllipse, 1, 1);
 }
 
 // The same panels without a dent: trusted at every noise level and seed, oval and cut-out. SICP_DENT_SWEEP=1: seeds
@@ -111,7 +123,7 @@ TEST(SicpDentMatrix, DentsOnTheNoseConeAreCaught) {
 TEST(SicpDentMatrix, UndentedPathsStayTrusted) {
   const bool sweep = std::getenv("SICP_DENT_SWEEP") != nullptr;
   for (const PlateOpening opening : {PlateOpening::kEllipse, PlateOpening::kRoundedRectangle}) {
-    for (std::uint64_t seed = 31; seed <= (sweep ? 40u : 33u); ++seed) {
+    for (std::uint64_t seed = first_seed(); seed <= first_seed() + (sweep ? 9u : 2u); ++seed) {
       for (const double noise : {0.02, 0.03, 0.06, 0.10, 0.15}) {
         if (!sweep && (noise == 0.02 || (opening == PlateOpening::kRoundedRectangle && noise != 0.03 && noise != 0.15)))
           continue;
@@ -132,7 +144,7 @@ TEST(SicpDentMatrix, UndentedPathsStayTrusted) {
 // seeds 31-40, noise 0.02-0.15 mm.
 TEST(SicpDentMatrix, UndentedNoseConesStayTrusted) {
   const bool sweep = std::getenv("SICP_DENT_SWEEP") != nullptr;
-  for (std::uint64_t seed = 31; seed <= (sweep ? 40u : 33u); ++seed) {
+  for (std::uint64_t seed = first_seed(); seed <= first_seed() + (sweep ? 9u : 2u); ++seed) {
     for (const double noise : {0.02, 0.03, 0.06, 0.10, 0.15}) {
       if (!sweep && noise != 0.03 && noise != 0.15) continue;
       PanelOptions o = panel(PanelShape::kNoseCone, PlateOpening::kEllipse, seed);
@@ -147,34 +159,67 @@ TEST(SicpDentMatrix, UndentedNoseConesStayTrusted) {
   }
 }
 
-// Laser-stripe scans (points on planes across x, 2 mm apart): the oval, the cut-out and the nose cone at 0.15 mm
-// noise, seeds 31-33, undented and with a 1.0 x 20 mm dent. No path may be trusted beyond the bar. Where the stripes
-// run along the edge the flank is not seen (the cut-out's and the nose cone's sides across x): those paths came out
-// 0.56-1.41 mm off at peak and are refused (the scan's own edge disagrees with them); the undented ovals are trusted
-// (measured: every one of the 3 here; 11 of 12 over noise 0.03-0.15 mm, one refused for 2 rows of surface misfit).
-TEST(SicpDentMatrix, StripeScansAreTrustedOnlyWithinTheBar) {
+// Laser-stripe scans: the oval, the cut-out and the nose cone at 0.15 mm noise, seeds 31-33, undented and with a
+// 1.0 x 20 mm dent, the stripes spacing_mm apart on planes turned angle_deg about z from across x. No path may be
+// trusted beyond the bar but for the documented limit (docs/sicp.md): stripes 3 mm or more apart along an edge
+// without its flank, counted in at_limit. Returns the undented ovals trusted; prints each opening's counts.
+int stripe_matrix(double spacing_mm, double angle_deg, int& at_limit) {
   int oval_trusted = 0;
   for (const PanelShape shape : {PanelShape::kPlate, PanelShape::kNoseCone}) {
     for (const PlateOpening opening : {PlateOpening::kEllipse, PlateOpening::kRoundedRectangle}) {
       if (shape == PanelShape::kNoseCone && opening == PlateOpening::kRoundedRectangle) continue;
+      int trusted[2] = {0, 0};
       for (int s = 0; s < 3; ++s) {
         for (const double depth : {0.0, 1.0}) {
-          PanelOptions o = panel(shape, opening, kSeeds[s]);
+          PanelOptions o = panel(shape, opening, seed_of(s));
           o.noise_mm = 0.15;
-          o.stripe_spacing_mm = 2.0;
+          o.stripe_spacing_mm = spacing_mm;
+          o.stripe_angle_deg = angle_deg;
           o.dent_depth_mm = depth;
           o.dent_width_mm = 20.0;
           o.dent_at = kDentAt[s];
           const PanelRun r = run(o);
-          const std::string what = "stripes 2 mm, " + label(o, depth, 20.0, 0.15, kSeeds[s]);
-          const bool trusted = meets_bar_or_refused(r, what);
-          if (depth == 0.0 && shape == PanelShape::kPlate && opening == PlateOpening::kEllipse && trusted)
-            ++oval_trusted;
+          char prefix[64];
+          std::snprintf(prefix, sizeof prefix, "stripes %.0f mm at %.0f deg, ", spacing_mm, angle_deg);
+          const std::string what = prefix + label(o, depth, 20.0, 0.15, seed_of(s));
+          if (r.result.trusted && beyond_bar(r.error) && spacing_mm >= 3.0 && std::fmod(angle_deg, 90.0) == 0.0) {
+            std::printf("%s trusted beyond the bar (the documented limit): off path %.3f / %.3f mm\n", what.c_str(),
+                        r.error.path_mean_mm, r.error.path_max_mm);
+            ++at_limit;
+          } else if (meets_bar_or_refused(r, what)) {
+            ++trusted[depth > 0.0 ? 1 : 0];
+          }
         }
+      }
+      if (shape == PanelShape::kPlate && opening == PlateOpening::kEllipse) oval_trusted = trusted[0];
+      std::printf("stripes %.0f mm at %.0f deg, %s: undented trusted %d of 3, dented 1.0 x 20 mm trusted %d of 3\n",
+                  spacing_mm, angle_deg, shape == PanelShape::kNoseCone ? "nose cone" : to_string(opening),
+                  trusted[0], trusted[1]);
+    }
+  }
+  return oval_trusted;
+}
+
+// 2 mm stripes across x: where they run along the edge (the cut-out's and the nose cone's sides across x) the flank
+// is not seen: those paths came out 0.56-1.41 mm off at peak and are refused (the scan's own edge disagrees with
+// them); the undented ovals are trusted (measured: every one of the 3 here; 11 of 12 over noise 0.03-0.15 mm, one
+// refused for 2 rows of surface misfit). SICP_DENT_SWEEP=1: also 1 and 3 mm, across x, at 45 and at 90 deg (the
+// counts in docs/measurements/sicp.md); 3 mm stripes along the cut-out's sides left one undented path trusted at
+// 0.26 / 0.75 mm (the documented limit: the scan's own edge placed by a random-sampling rule stripes break).
+TEST(SicpDentMatrix, StripeScansAreTrustedOnlyWithinTheBar) {
+  int at_limit = 0;
+  EXPECT_EQ(stripe_matrix(2.0, 0.0, at_limit), 3);
+  if (std::getenv("SICP_DENT_SWEEP") != nullptr) {
+    for (const double spacing : {1.0, 2.0, 3.0}) {
+      for (const double angle : {0.0, 45.0, 90.0}) {
+        if (spacing != 2.0 || angle != 0.0) stripe_matrix(spacing, angle, at_limit);
       }
     }
   }
-  EXPECT_EQ(oval_trusted, 3);
+  std::printf("%d striped paths trusted beyond the bar at the limit\n", at_limit);
+  if (default_stream()) {
+    EXPECT_LE(at_limit, 1);
+  }
 }
 
 }  // namespace

@@ -145,8 +145,15 @@ SicpCompensationResult compensate_trajectory(const Polyline& contour, const Mesh
   const std::vector<Eigen::Vector3d> predicted_normals = r.trajectory.normals;
   smooth_tool_normals(r.trajectory, options.normals.smooth_mm);
   const double noise = estimate_surface_noise(thin, tree, kScanNoise);
+  // The surface misfit counts the scan's own points, not the thinned ones, with their own noise: a narrow dent's
+  // evidence on the face is a handful of points (half a 10 mm dent at 0.5-0.65 points per mm^2), and the 1 mm voxels
+  // merge about a third of them (docs/measurements/sicp.md, Narrow dents: the scan's own points).
+  const std::unique_ptr<KdTree> full_tree = voxel > 0.0 ? std::make_unique<KdTree>(scan) : nullptr;
+  const std::vector<Eigen::Vector3d>& misfit_scan = full_tree ? scan : thin;
+  const KdTree& misfit_tree = full_tree ? *full_tree : tree;
+  const double misfit_noise = full_tree ? estimate_surface_noise(scan, *full_tree, kScanNoise) : noise;
   const std::vector<SicpRowMisfit> misfit = sicp_surface_misfit(
-      r.trajectory, predicted_normals, thin, tree, noise,
+      r.trajectory, predicted_normals, misfit_scan, misfit_tree, misfit_noise,
       model_residual(r, contour, nominal, *reference, options.sicp.max_distance_mm), options.misfit);
   r.check = check_sicp_path(
       contour, r.registration, nominal, r.trajectory, options.checks, noise,
