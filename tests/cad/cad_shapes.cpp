@@ -19,6 +19,7 @@
 #include <BRepLProp_SLProps.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <GProp_GProps.hxx>
@@ -38,6 +39,7 @@
 #include <TopoDS_Shape.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Pnt2d.hxx>
+#include <gp_Vec.hxx>
 
 namespace conform::test {
 
@@ -106,6 +108,32 @@ TopoDS_Shape ribbed_plate() {
              .Shape();
   part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeBox(gp_Pnt(90, 8, 4), 22.0, 14.0, 10.0).Shape()).Shape();
   return chamfer_edges_at(part, 80.0, 10.0, 3.0);
+}
+
+namespace {
+
+// The triangle (x, y0, z0), (x, y1, z1), (x, y2, z2) in the plane x = x0, extruded by `length_mm` along +x.
+TopoDS_Shape triangular_prism(double x0, const double (&yz)[3][2], double length_mm) {
+  BRepBuilderAPI_MakePolygon outline(gp_Pnt(x0, yz[0][0], yz[0][1]), gp_Pnt(x0, yz[1][0], yz[1][1]),
+                                     gp_Pnt(x0, yz[2][0], yz[2][1]), Standard_True);
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(outline.Wire(), Standard_True).Face();
+  return BRepPrimAPI_MakePrism(face, gp_Vec(length_mm, 0, 0)).Shape();
+}
+
+}  // namespace
+
+TopoDS_Shape welded_bracket() {
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 120.0, 80.0, 10.0).Shape();
+  part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 10), 120.0, 10.0, 80.0).Shape()).Shape();
+  const double gusset[3][2] = {{10, 10}, {60, 10}, {10, 60}};
+  for (const double x : {20.0, 92.0}) part = BRepAlgoAPI_Fuse(part, triangular_prism(x, gusset, 8.0)).Shape();
+  const double weld[3][2] = {{10, 10}, {16, 10}, {10, 16}};
+  part = BRepAlgoAPI_Fuse(part, triangular_prism(0.0, weld, 120.0)).Shape();
+  for (const double x : {30.0, 90.0}) {
+    part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, 55, -5), gp::DZ()), 6.0, 20.0).Shape())
+               .Shape();
+  }
+  return part;
 }
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }

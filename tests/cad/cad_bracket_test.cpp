@@ -1,0 +1,116 @@
+// A welded bracket scanned from one side (41 % of its surface; 0.03 mm noise) in six random frames (up to 180 deg,
+// 100 mm away), `align --init fpfh` against its STEP and against a CAD-like STL exported from it (0.1 mm deflection:
+// 288 triangles, its flat faces a few long thin triangles each): never a wrong pose with exit 0, and right to 0.01
+// deg / 0.01 mm at the part where accepted. The coarse stage samples the reference's surface at the scan's spacing
+// whatever the tessellation (a CAD-like STL once stalled it for 30-40 s); each run takes about a second.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <TopoDS_Shape.hxx>
+#include <nlohmann/json.hpp>
+
+#include "cad_shapes.h"
+#include "conform/core/cad.h"
+#include "conform/core/io.h"
+#include "conform/core/random.h"
+#include "run_command.h"
+#include "temp_dir.h"
+
+namespace conform {
+namespace {
+
+Eigen::Isometry3d transform_of(const nlohmann::json& j) {
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (int row = 0; row < 4; ++row) {
+    for (int col = 0; col < 4; ++col) T(row, col) = j["T_ref_scan"][row][col].get<double>();
+  }
+  return Eigen::Isometry3d(T);
+}
+
+
+// A turn of up to max_deg about a random axis and a shift of up to max_mm in a random direction.
+Eigen::Isometry3d random_motion(Random& random, double max_deg, double max_mm) {
+  const auto direction = [&random] {
+    return Eigen::Vector3d(random.normal(), random.normal(), random.normal()).normalized();
+  };
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.rotate(Eigen::AngleAxisd(random.uniform(0.0, max_deg) * M_PI / 180.0, direction()));
+  T.translation() = random.uniform(0.0, max_mm) * direction();
+  return T;
+}
+
+// The scan: the exact surface's points whose outward normal faces the scanner (looking from +y, +z, a little +x at
+// the inside of the bracket's corner), in the scanner's frame.
+struct Scan {
+  std::vector<Eigen::Vector3d> points;
+  double share = 0.0;  // of the sample over the whole part
+};
+
+Scan scan_from_one_side(const TopoDS_Shape& part, const Eigen::Isometry3d& T_part_scan, std::uint64_t seed) {
+  const test::SurfaceSample sample = test::sample_surface(part, 40000, 0.03, seed);
+  const Eigen::Vector3d towards_scanner = Eigen::Vector3d(0.3, 0.7, 0.65).normalized();
+  Scan scan;
+  for (std::size_t i = 0; i < sample.points.size(); ++i) {
+    if (sample.normals[i].dot(towards_scanner) > 0.3) scan.points.push_back(T_part_scan.inverse() * sample.points[i]);
+  }
+  scan.share = static_cast<double>(scan.points.size()) / static_cast<double>(sample.points.size());
+  return scan;
+}
+
+TEST(CadBracket, ScannedFromOneSideCoarseAlignsAgainstStepAndCadLikeStl) {
+  test::TempDir dir;
+  const TopoDS_Shape bracket = test::welded_bracket();
+  test::write_cad(bracket, dir.file("bracket.step"), test::CadFormat::kStep, "MM");
+  // The CAD-like STL: the STEP tessellated coarsely (0.1 mm, 28.6 deg), as a CAD system exports it.
+  CadReadOptions coarse;
+  coarse.deflection_mm = 0.1;
+  const Mesh stl = read_cad(dir.file("bracket.step"), coarse, nullptr, nullptr);
+  write_mesh(dir.file("bracket.stl"), stl);
+  std::printf("CAD-like STL: %zu vertices, %zu triangles\n", stl.vertices.size(), stl.faces.size());
+  const Eigen::Vector3d centre(60, 30, 30);
+  Random random(11);
+  int right = 0, wrong_accepted = 0, runs = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Eigen::Isometry3d T_part_scan = random_motion(random, 180.0, 100.0);
+    const Scan scan = scan_from_one_side(bracket, T_part_scan, static_cast<std::uint64_t>(trial + 1));
+    Mesh cloud;
+    cloud.vertices = scan.points;
+    WriteOptions write;
+    write.double_precision = true;
+    write_mesh(dir.file("scan.ply"), cloud, write);
+    for (const char* reference : {"bracket.step", "bracket.stl"}) {
+      const test::RunResult r = test::run(CONFORM_EXE, {"align", "--scan", dir.file("scan.ply"), "--reference",
+                                                        dir.file(reference), "--init", "fpfh", "--json"});
+      ASSERT_NE(r.exit_code, 2) << reference << r.err;
+      const nlohmann::json j = nlohmann::json::parse(r.out);
+      const Eigen::Isometry3d error = T_part_scan.inverse() * transform_of(j);
+      const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
+      const Eigen::Vector3d at = T_part_scan.inverse() * centre;
+      const double translation_mm = (error * at - at).norm();
+      const bool ok = rotation_deg < 0.01 && translation_mm < 0.01;
+      ++runs;
+      right += ok && r.exit_code == 0;
+      wrong_accepted += !ok && r.exit_code == 0;
+      std::printf("trial %d (%.0f deg), %.0f %% scanned, %s: %.5f deg, %.5f mm, exit %d, trust %s\n", trial,
+                  Eigen::AngleAxisd(T_part_scan.rotation()).angle() * 180.0 / M_PI, 100.0 * scan.share, reference,
+                  rotation_deg, translation_mm, r.exit_code, j["trust"].get<std::string>().c_str());
+    }
+  }
+  std::printf("%d runs: %d right and accepted, %d wrong and accepted\n", runs, right, wrong_accepted);
+  EXPECT_EQ(wrong_accepted, 0);
+  // Measured 6 of 12 (trials 2 and 4 against both, 3 against the STEP, 5 against the STL): the rest are refused,
+  // none wrong. Where it fails, every FPFH hypothesis is the bracket turned 180 deg about its corner's diagonal
+  // (base onto upright, a near-symmetry) or shifted by a plate's thickness, at about 76 % of the scan: on 10 mm plates
+  // at 3.8 mm voxels the histograms of the flat faces are alike, fewer than 50 matches are mutual, and 2 % of the
+  // correspondences agree with the best pose, so RANSAC draws the right one by luck (docs/measurements/align.md).
+  EXPECT_GE(right, 6);
+}
+
+}  // namespace
+}  // namespace conform
