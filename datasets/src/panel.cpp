@@ -30,6 +30,17 @@ Edge make_edge(const PanelOptions& o) {
   return e;
 }
 
+// Whether p, in the plane of the triangle a b c, lies inside it (its barycentric coordinates, to 1e-9).
+bool inside_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                     const Eigen::Vector3d& c) {
+  const Eigen::Vector3d u = b - a, v = c - a, w = p - a;
+  const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), wu = w.dot(u), wv = w.dot(v);
+  const double det = uu * vv - uv * uv;
+  if (!(det > 0.0)) return false;
+  const double beta = (vv * wu - uv * wv) / det, gamma = (uu * wv - uv * wu) / det;
+  return beta >= -1e-9 && gamma >= -1e-9 && beta + gamma <= 1.0 + 1e-9;
+}
+
 // The band (rows 0..rows outwards from the edge) and the flank (rows 1..flank_rows down the edge) on a grid of
 // columns at even tau; each vertex remembers its column's tau and its distance from the edge (0 on the flank).
 struct SurfaceGrid {
@@ -156,14 +167,20 @@ void make_scan(const PanelOptions& o, const SurfaceGrid& g, double total_tau, Pa
     const Face& t = g.mesh.faces[f];
     const auto V = [&](int c) { return g.mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])]; };
     Eigen::Vector3d p = V(0) + u * (V(1) - V(0)) + v * (V(2) - V(0));
-    bool across_stripes = false;  // a face nearly parallel to the stripes' planes: no stripe crosses it
-    if (o.stripe_spacing_mm > 0.0) {  // along the face's plane to the nearest stripe: d . p changes, the face holds
+    // Along the face's plane to the nearest stripe (d . p changes, the face holds). A point that would leave its face
+    // is dropped: beyond the face its plane is not the surface (on a curved flank, millimetres off it), and a stripe
+    // lies where its plane cuts the surface. A face nearly parallel to the stripes' planes: no stripe crosses it.
+    bool across_stripes = false;
+    if (o.stripe_spacing_mm > 0.0) {
       const Eigen::Vector3d n = face_normal(g.mesh, f);
       const Eigen::Vector3d along = stripe_normal - n.dot(stripe_normal) * n;
       across_stripes = along.dot(stripe_normal) < 0.1;
       const double s = p.dot(stripe_normal);
       const double stripe = std::round(s / o.stripe_spacing_mm) * o.stripe_spacing_mm;
-      if (!across_stripes) p += (stripe - s) / along.dot(stripe_normal) * along;
+      if (!across_stripes) {
+        p += (stripe - s) / along.dot(stripe_normal) * along;
+        across_stripes = !inside_triangle(p, V(0), V(1), V(2));
+      }
     }
     const double z = noise.normal();  // drawn for every point, so that holes do not shift the others' noise
     const bool is_stray = stray.uniform() < o.stray_fraction;

@@ -78,8 +78,8 @@ struct PanelOptions {
   // A laser-stripe scan: each point moved within its face to the nearest of the planes d . p = k stripe_spacing_mm,
   // d = (cos a, sin a, 0) for a = stripe_angle_deg (the nominal frame; at 0 the planes x = k spacing: the plate's
   // stripes run across its x axis, the nose cone's round its barrel), so that the scan lies on lines this far apart,
-  // as densely along each as the points allow; faces nearly parallel to the planes (the flank where it runs across
-  // d) are left out. 0: points spread evenly over the surface; else in [0.2, 20]. The angle in [-90, 90] deg.
+  // as densely along each as the points allow; a point the move would take out of its face, and faces nearly parallel
+  // to the planes (the flank where it runs across d), are left out. 0: points spread evenly over the surface; else in [0.2, 20]. The angle in [-90, 90] deg.
   double stripe_spacing_mm = 0.0;
   double stripe_angle_deg = 0.0;
 
