@@ -169,9 +169,10 @@ void split_correction(const Trajectory& nominal, const Trajectory& t, std::size_
 
 // Each row's distance across the edge from the scan's own edge points (SicpResult::scan_edge) within the window: the
 // median, in the surface, perpendicular to the path. A row farther than max_edge_offset_mm loses its confidence.
-void judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Trajectory& t, bool closed,
-                       const SicpCheckOptions& o, SicpCheck& c) {
-  if (scan_edge.empty()) return;
+std::vector<bool> judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Trajectory& t, bool closed,
+                                    const SicpCheckOptions& o, SicpCheck& c) {
+  std::vector<bool> seen(t.points.size(), false);
+  if (scan_edge.empty()) return seen;
   const KdTree tree(scan_edge);
   std::vector<int> indices;
   std::vector<float> sq;
@@ -185,6 +186,7 @@ void judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Traj
     const Eigen::Vector3d across = t.normals[i].cross(tangent.normalized());
     tree.radius(t.points[i].cast<float>(), static_cast<float>(o.edge_window_mm), indices, sq);
     if (indices.size() < 5) continue;
+    seen[i] = true;
     std::vector<double> offsets;
     for (int k : indices) offsets.push_back((scan_edge[static_cast<std::size_t>(k)] - t.points[i]).dot(across));
     const double offset = median(offsets);
@@ -198,6 +200,7 @@ void judge_edge_offset(const std::vector<Eigen::Vector3d>& scan_edge, const Traj
                          format_fixed(c.max_edge_offset_mm, 2) +
                          " mm): the registration did not find the edge there; scan the opening's flank, or more "
                          "densely along the edge");
+  return seen;
 }
 
 // Rows whose correction jumps from the row before (more than max_row_step_mm per mm of nominal spacing, at least
@@ -295,6 +298,62 @@ void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t,
       format_fixed(c.max_dent_slope_deg, 1) + " deg (limit " + format_fixed(o.max_dent_slope_deg, 2) +
       "): a local shape change shorter than a segment (a dent, a bulge) that the path does not follow; inspect the "
       "part there and program that stretch from its own measurement");
+}
+
+// A measured row is held across the edge by the flank's scan points near it (kMinFlankPoints within the misfit's
+// disc) or by the scan's own edge (edge_seen); with neither, the segments carry their across position in from where
+// the edge was seen. A stretch of such rows up to kMaxUnheldMm long between held rows is bridged; a longer one, or
+// one at an open end, is not. Laser stripes along an edge without its flank left paths trusted 0.65-4 mm off at
+// peak; the shortest such stretch on a path beyond the bar was 27.5 mm, the longest on a path within it 100 mm, so
+// no length separates them and the bridge stays short (docs/measurements/sicp.md). Unmeasured rows are judged by
+// their own bridge.
+constexpr std::size_t kMinFlankPoints = 3;
+constexpr double kMaxUnheldMm = 20.0;
+void judge_anchoring(const std::vector<SicpRowMisfit>& misfit, const std::vector<bool>& edge_seen, const Trajectory& t,
+                     bool closed, SicpCheck& c) {
+  const std::size_t n = c.rows.size();
+  if (misfit.size() != n || n < 2) return;
+  std::vector<bool> unheld(n);
+  std::size_t held = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    unheld[i] = c.rows[i].gap_mm == 0.0 && misfit[i].flank_points < kMinFlankPoints && !edge_seen[i];
+    if (!unheld[i]) ++held;
+  }
+  if (held == n) return;
+  // Runs of unheld rows, walked from a held row (a closed path wraps); none held: one run, not bridged.
+  std::size_t origin = 0;
+  while (closed && origin < n && unheld[origin]) ++origin;
+  if (origin == n) origin = 0;
+  double longest = 0.0;
+  for (std::size_t k = 0; k < n;) {
+    const std::size_t i = (origin + k) % n;
+    if (!unheld[i]) {
+      ++k;
+      continue;
+    }
+    std::vector<std::size_t> run{i};
+    double arc = 0.0;
+    while (run.size() < n) {
+      const std::size_t next = (run.back() + 1) % n;
+      if (!closed && next == 0) break;
+      if (!unheld[next]) break;
+      arc += (t.points[next] - t.points[run.back()]).norm();
+      run.push_back(next);
+    }
+    const bool at_end = !closed && (run.front() == 0 || run.back() + 1 == n);
+    longest = std::max(longest, arc);
+    if (held == 0 || at_end || arc > kMaxUnheldMm) {
+      for (std::size_t r : run) c.rows[r].unanchored = true;
+      c.unanchored_rows += run.size();
+    }
+    k += run.size();
+  }
+  if (c.unanchored_rows == 0) return;
+  c.warnings.push_back(std::to_string(c.unanchored_rows) +
+                       " rows have no scan of the opening's flank and no end of the scanned face near them, on "
+                       "stretches too long to bridge (longest " + format_fixed(longest, 0) + " mm, at most " +
+                       format_fixed(kMaxUnheldMm, 0) + "): where the edge lies across is not measured there; scan "
+                       "the flank (laser stripes across the edge, not along it)");
 }
 
 // The warnings of blind, bare and outlier segments and far rows, each saying what to change.
@@ -417,9 +476,10 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
   }
   const std::vector<double> support =
       by_segments ? judge_edge_support(nominal.points, closed, g, s, o, c) : std::vector<double>(c.rows.size(), 1.0);
-  judge_edge_offset(r.scan_edge, compensated, closed, o, c);
+  const std::vector<bool> edge_seen = judge_edge_offset(r.scan_edge, compensated, closed, o, c);
   const std::vector<bool> jumps = judge_row_steps(nominal, compensated, closed, o, c);
   judge_misfit(misfit, compensated, o, c);
+  judge_anchoring(misfit, edge_seen, compensated, closed, c);
   c.min_confidence = 1.0;
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     SicpRowReport& row = c.rows[i];
@@ -434,7 +494,8 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
                                                     b.weight * c.segment_confidence[b.next]);
     }
     if (row.contour_distance_mm > o.max_offset_mm) row.confidence = 0.0, ++c.far_rows;
-    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i] || row.misfit) row.confidence = 0.0;
+    if (std::abs(row.edge_offset_mm) > o.max_edge_offset_mm || jumps[i] || row.misfit || row.unanchored)
+      row.confidence = 0.0;
     if (row.confidence < o.min_confidence) ++c.untrusted_rows;
     c.min_confidence = std::min(c.min_confidence, row.confidence);
   }
@@ -449,6 +510,7 @@ SicpCheck check_sicp_path(const Polyline& contour, const SicpResult& r, const Tr
                 : c.off_edge_rows > 0                ? "rows away from the scan's edge"
                 : c.jump_rows > 0                    ? "rows that jump"
                 : c.misfit_rows > 0                  ? "rows where the scanned surface departs from the model"
+                : c.unanchored_rows > 0              ? "rows without scan of the flank or of the face's end"
                 : c.unmeasured_rows > c.bridged_rows ? "rows without scan of the edge that cannot be bridged"
                                                      : "segments fitting badly or without data") +
                "; see the warnings)";

@@ -179,6 +179,7 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
   const bool closed = detail::rows_close(t.points);
   const std::vector<Eigen::Vector3d> tangents = path_tangents(t.points, closed);
   const double face = std::cos(o.face_angle_deg / kDegPerRad);
+  const double flank_sin = std::sin(30.0 / kDegPerRad);  // |cos| of the angle to the tool axis: within 30 deg of 90
   const double noise = std::max(noise_mm, 1e-6);
   const float plane_sq = static_cast<float>(o.radius_mm) * static_cast<float>(o.radius_mm);  // as the tree compares
   const float wide_sq = static_cast<float>(dent_radius) * static_cast<float>(dent_radius);
@@ -198,8 +199,10 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     uvr.clear();
     wide.clear();
     values.clear();
+    std::size_t flank = 0;
     for (std::size_t j = 0; j < indices.size(); ++j) {
       const PointResidual& p = r[static_cast<std::size_t>(indices[j])];
+      if (p.found && sq[j] <= plane_sq && std::abs(p.normal.dot(axis)) < flank_sin) ++flank;
       if (!p.found || p.normal.dot(axis) < face) continue;
       const Eigen::Vector3d d = scan[static_cast<std::size_t>(indices[j])] - t.points[i];
       const Eigen::Vector3d point(d.dot(along), d.dot(across), p.residual_mm);
@@ -209,6 +212,7 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
       values.push_back(p.residual_mm);
     }
     SicpRowMisfit& m = out[i];
+    m.flank_points = flank;
     fit_dent_bump(wide, o.dent_sigma_mm, noise, o.min_points, m);
     if (uvr.size() < o.min_points) continue;
     const double centre = median(values);

@@ -24,9 +24,11 @@ struct Face {
   std::vector<Eigen::Vector3d> scan;
 };
 
-// The path along x at y = 0 (rows 1 mm apart), the face on y in [0, 30] mm; a Gaussian dent of `depth` (full width
-// 4 sigma) centred on the edge at x = 100; a share of stray points 5-20 mm off.
-Face make_face(double noise_mm, double depth_mm, double width_mm, double stray_share, std::uint64_t seed) {
+// The path along x at y = 0 (rows 1 mm apart), the face on y in [0, 30] mm and its flank on y = 0, z in [-4, -1.5]
+// (none for x in [no_flank_from, no_flank_to]); a Gaussian dent of `depth` (full width 4 sigma) centred on the edge at
+// x = 100; a share of stray points 5-20 mm off.
+Face make_face(double noise_mm, double depth_mm, double width_mm, double stray_share, std::uint64_t seed,
+               double no_flank_from = 0.0, double no_flank_to = 0.0) {
   Face f;
   for (int i = 0; i <= 200; ++i) {
     f.contour.points.emplace_back(i, 0.0, 0.0);
@@ -42,12 +44,18 @@ Face make_face(double noise_mm, double depth_mm, double width_mm, double stray_s
     if (stray.uniform() < stray_share) z += (stray.uniform() < 0.5 ? -1.0 : 1.0) * stray.uniform(5.0, 20.0);
     f.scan.emplace_back(x, y, z);
   }
+  for (int k = 0; k < 220 * 3; ++k) {  // the flank, 2.5 mm tall, at the face's density
+    const double x = place.uniform(-10.0, 210.0), z = place.uniform(-4.0, -1.5);
+    if (x < no_flank_from || x > no_flank_to) f.scan.emplace_back(x, noise_mm * noise.normal(), z);
+  }
   return f;
 }
 
+// The plane z = 0 and, below 1.2 mm next to the edge, the flank y = 0 facing the opening.
 bool flat_model(const Eigen::Vector3d& q, std::size_t, double& residual, Eigen::Vector3d& normal) {
-  residual = q.z();
-  normal = Eigen::Vector3d::UnitZ();
+  const bool flank = q.z() < -1.2 && q.y() < 1.0;
+  residual = flank ? -q.y() : q.z();
+  normal = flank ? Eigen::Vector3d(-Eigen::Vector3d::UnitY()) : Eigen::Vector3d(Eigen::Vector3d::UnitZ());
   return true;
 }
 
@@ -106,7 +114,7 @@ TEST(SicpSurfaceMisfit, DentIsFoundWhateverTheNoise) {
 // for part of the dent); at 0.15 mm noise on one point per mm^2 it is significant (here about 8 standard errors).
 TEST(SicpSurfaceMisfit, NarrowDentDepthAndSlopeAreMeasured) {
   for (const std::uint64_t seed : {7, 8, 9}) {
-    Face f = make_face(0.15, 0.5, 10.0, 0.0, seed);
+    Face f = make_face(0.15, 0.5, 10.0, 0.0, seed, -20.0, 220.0);  // the face only: the model below has no flank
     for (Eigen::Vector3d& q : f.scan) q.z() += 0.002 * (q.x() - 100.0) + 1e-4 * (q.x() - 100.0) * (q.x() - 100.0);
     const auto background = [](const Eigen::Vector3d& q, std::size_t, double& residual, Eigen::Vector3d& normal) {
       residual = q.z();
@@ -129,6 +137,30 @@ TEST(SicpSurfaceMisfit, StrayPointsAreLeftOut) {
     const SicpCheck c = judge(make_face(0.05, 0.0, 20.0, share, 4), 0.05);
     EXPECT_TRUE(c.trusted) << share << ": " << c.reason;
   }
+}
+
+// Where neither the flank nor the face's own end is scanned, nothing measures the edge across: a stretch of such rows
+// longer than a short bridge is not trusted (named in the reason), a short one is bridged; the flank's points are
+// counted per row (about 2.5 mm x 12 mm at one point per mm^2 within the 6 mm disc).
+TEST(SicpSurfaceMisfit, EdgeWithoutFlankOrFaceEndIsNotTrusted) {
+  std::vector<SicpRowMisfit> m;
+  const SicpCheck held = judge(make_face(0.05, 0.0, 20.0, 0.0, 5), 0.05, &m);
+  EXPECT_TRUE(held.trusted) << held.reason;
+  EXPECT_GT(m[100].flank_points, 15u);
+  EXPECT_EQ(held.unanchored_rows, 0u);
+  const SicpCheck bare = judge(make_face(0.05, 0.0, 20.0, 0.0, 5, -20.0, 220.0), 0.05, &m);
+  EXPECT_FALSE(bare.trusted);
+  EXPECT_EQ(m[100].flank_points, 0u);
+  EXPECT_EQ(bare.unanchored_rows, bare.rows.size());
+  EXPECT_NE(bare.reason.find("without scan of the flank"), std::string::npos) << bare.reason;
+  const SicpCheck gap = judge(make_face(0.05, 0.0, 20.0, 0.0, 5, 80.0, 130.0), 0.05, &m);
+  EXPECT_FALSE(gap.trusted);
+  EXPECT_GT(gap.unanchored_rows, 30u);
+  EXPECT_LT(gap.unanchored_rows, 50u);
+  EXPECT_FALSE(gap.rows[60].unanchored);
+  EXPECT_TRUE(gap.rows[105].unanchored);
+  const SicpCheck bridged = judge(make_face(0.05, 0.0, 20.0, 0.0, 5, 95.0, 105.0), 0.05, &m);
+  EXPECT_TRUE(bridged.trusted) << bridged.reason;
 }
 
 TEST(SicpSurfaceMisfit, InvalidOptionsAndSizesAreRefused) {

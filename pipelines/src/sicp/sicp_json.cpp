@@ -101,6 +101,7 @@ nlohmann::json sicp_json(const SicpJobResult& r) {
                         {"jump_rows", c.check.jump_rows},
                         {"max_row_step_mm", c.check.max_row_step_mm},
                         {"misfit_rows", c.check.misfit_rows},
+                        {"unanchored_rows", c.check.unanchored_rows},
                         {"max_surface_offset_mm", c.check.max_surface_offset_mm},
                         {"max_normal_error_deg", c.check.max_normal_error_deg},
                         {"max_local_offset_mm", c.check.max_local_offset_mm},

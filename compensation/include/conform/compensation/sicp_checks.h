@@ -95,6 +95,9 @@ struct SicpRowReport {
   double local_offset_mm = 0.0;    // the mean residual near the row against its neighbours' (misfit)
   double dent_slope_deg = 0.0;     // the slope of a narrow dent fitted at the row (misfit; 0: none significant)
   bool misfit = false;             // one of the three beyond its limit, significantly
+  // Measured, but with neither scan of the flank (misfit's flank_points) nor the scan's own edge near it: where the
+  // edge lies across is not measured there (laser stripes along an edge without its flank).
+  bool unanchored = false;
   double contour_distance_mm = 0.0;  // of the nominal row from the nominal contour
 };
 
@@ -113,6 +116,7 @@ struct SicpCheck {
   std::size_t off_edge_rows = 0;                  // farther than max_edge_offset_mm across from the scan's edge
   std::size_t jump_rows = 0;                      // correction jumped by more than max_row_step_mm, or stepped back
   std::size_t misfit_rows = 0;         // the scanned surface off the model's there (max_surface_offset_mm, ...)
+  std::size_t unanchored_rows = 0;     // measured rows with neither flank nor the scan's own edge near them
   double max_surface_offset_mm = 0.0;  // the largest significant |surface_offset_mm| (0: none significant)
   double max_normal_error_deg = 0.0;   // the largest significant normal_error_deg
   double max_local_offset_mm = 0.0;    // the largest significant |local_offset_mm|

@@ -55,6 +55,9 @@ struct SicpMisfitOptions {
 
 struct SicpRowMisfit {
   std::size_t points = 0;     // face points in the plane fit; 0: not fitted
+  // Scan points of the flank within radius_mm (the model's normal there within 30 deg of square to the row's tool
+  // axis): they measure where the edge lies across, whatever the face's fit.
+  std::size_t flank_points = 0;
   double offset_mm = 0.0;     // a: the scanned surface off the model's at the row, along its normal
   double offset_se_mm = 0.0;  // its standard error
   // The compensated tool normal against the predicted one tilted by (b, c), split into its tilt along the path (about
