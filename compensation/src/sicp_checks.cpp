@@ -303,10 +303,10 @@ void judge_misfit(const std::vector<SicpRowMisfit>& misfit, const Trajectory& t,
 // A measured row is held across the edge by the flank's scan points near it (kMinFlankPoints within the misfit's
 // disc) or by the scan's own edge (edge_seen); with neither, the segments carry their across position in from where
 // the edge was seen. A stretch of such rows up to kMaxUnheldMm long between held rows is bridged; a longer one, or
-// one at an open end, is not. Laser stripes along an edge without its flank left paths trusted 0.65-4 mm off at
-// peak; the shortest such stretch on a path beyond the bar was 27.5 mm, the longest on a path within it 100 mm, so
-// no length separates them and the bridge stays short (docs/measurements/sicp.md). Unmeasured rows are judged by
-// their own bridge.
+// one at an open end, is not. Laser stripes along an edge without its flank left 35 of 162 undented paths trusted
+// 0.65-4 mm off at peak; the shortest such stretch on a path beyond the bar was 27.5 mm, the longest on a path
+// within it 100 mm, so no length separates them and the bridge stays short (docs/measurements/sicp.md). Unmeasured
+// rows are judged by their own bridge.
 constexpr std::size_t kMinFlankPoints = 3;
 constexpr double kMaxUnheldMm = 20.0;
 void judge_anchoring(const std::vector<SicpRowMisfit>& misfit, const std::vector<bool>& edge_seen, const Trajectory& t,
