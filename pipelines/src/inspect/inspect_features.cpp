@@ -6,8 +6,8 @@
 
 #include "conform/core/constants.h"
 #include "conform/core/error.h"
-#include "conform/evaluation/revolved_fit.h"
 #include "conform/fitting/cylinder.h"
+#include "conform/fitting/revolved.h"
 
 namespace conform::detail {
 
@@ -109,7 +109,7 @@ void measure_sphere(const std::vector<Eigen::Vector3d>& points, const InspectOpt
                  [&](const Eigen::Vector3d& p) { return (p - fit.centre).norm() - fit.radius_mm; });
 }
 
-// The least-squares cone from the nominal (evaluation/revolved_fit.h): its half-angle, axis, apex, and at the
+// The least-squares cone from the nominal (fitting/revolved.h): its half-angle, axis, apex, and at the
 // nominal's middle section (the nominal axis point nearest the face's centre) the axis offset and both radii.
 void measure_cone(const std::vector<Eigen::Vector3d>& points, const InspectOptions& options, FaceInspection& face) {
   const CadFace& nominal = face.nominal;

@@ -1,4 +1,4 @@
-// evaluation/revolved_fit.h: least-squares cones and tori against generated points with known parameters and noise,
+// fitting/revolved.h: least-squares cones and tori against generated points with known parameters and noise,
 // from a start off the truth (as a scan's cone or torus is off its nominal), and the inputs that determine nothing.
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "conform/core/random.h"
-#include "conform/evaluation/revolved_fit.h"
+#include "conform/fitting/revolved.h"
 
 namespace conform {
 namespace {
@@ -89,6 +89,24 @@ TEST(RevolvedFit, PointsThatDetermineNothingAreRefused) {
   }
   EXPECT_FALSE(fit_cone(ring, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 0.0).ok);
   EXPECT_FALSE(fit_cone(ring, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), std::atan(0.5)).ok);
+  // The apex beyond the points (the start's cone opens away from them): no cone of that sense through them.
+  EXPECT_FALSE(fit_cone(ring, Eigen::Vector3d(0, 0, 20), Eigen::Vector3d::UnitZ(), std::atan(0.5)).ok);
+  // One circle of a torus (its outer equator, the start the truth): the two radii trade off, nothing fixes them.
+  std::vector<Eigen::Vector3d> equator;
+  for (int i = 0; i < 100; ++i) {
+    const double t = 2.0 * M_PI * i / 100.0;
+    equator.emplace_back(13.0 * std::cos(t), 13.0 * std::sin(t), 0.0);
+  }
+  EXPECT_FALSE(fit_torus(equator, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 10.0, 3.0).ok);
+  // Radii that are no torus.
+  EXPECT_FALSE(fit_torus(equator, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 10.0, 0.0).ok);
+  EXPECT_FALSE(fit_torus(equator, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), -1.0, 3.0).ok);
+  // A point that is no point, among a cone's that fit from the truth.
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.1, 0.2, -1).normalized();
+  std::vector<Eigen::Vector3d> cone = cone_points(Eigen::Vector3d(5, -3, 12), axis, 0.7, 8.0, 14.0, M_PI, 7);
+  ASSERT_TRUE(fit_cone(cone, Eigen::Vector3d(5, -3, 12), axis, 0.7).ok);
+  cone[3].x() = std::nan("");
+  EXPECT_FALSE(fit_cone(cone, Eigen::Vector3d(5, -3, 12), axis, 0.7).ok);
 }
 
 }  // namespace
