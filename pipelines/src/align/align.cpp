@@ -71,6 +71,23 @@ double trimmed_rms(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
   return std::sqrt(sum / static_cast<double>(kept));
 }
 
+// Two fits of the scan compared at the same overlap, the smaller of their estimates (trimmed ICP's criterion,
+// Chetverikov et al. 2002): the RMS of that share of each one's closest pairs.
+struct AtCommonOverlap {
+  double share = 0.0;
+  double rms_a_mm = 0.0, rms_b_mm = 0.0;
+  bool b_better() const { return rms_b_mm < rms_a_mm; }
+};
+
+AtCommonOverlap at_common_overlap(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
+                                  const IcpResult& a, const IcpResult& b) {
+  AtCommonOverlap out;
+  out.share = std::min(a.inlier_fraction, b.inlier_fraction);
+  out.rms_a_mm = trimmed_rms(scan, reference, a.T_ref_scan, out.share);
+  out.rms_b_mm = trimmed_rms(scan, reference, b.T_ref_scan, out.share);
+  return out;
+}
+
 // Fine ICP from `start`. With the overlap estimated and a start the user gave (which may be rough): trimmed to the
 // estimated overlap, ICP keeps a right start that half the scan does not overlap, but from a rough start it can stay
 // where it began (a LiDAR pair started 0.5 m off); every pair kept, it finds the basin from a rough start, but pairs
@@ -93,10 +110,7 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
   IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
   if (!via.converged) return direct;
   if (!direct.converged) return via;
-  const double share = std::min(direct.inlier_fraction, via.inlier_fraction);
-  return trimmed_rms(scan, reference, via.T_ref_scan, share) < trimmed_rms(scan, reference, direct.T_ref_scan, share)
-             ? via
-             : direct;
+  return at_common_overlap(scan, reference, direct, via).b_better() ? via : direct;
 }
 
 // Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
@@ -200,7 +214,7 @@ detail::FitDiscrepancy add_fit_bias(const std::vector<Eigen::Vector3d>& scan, co
 // overlap ICP has more than one minimum along the motions the overlap fixes poorly, and the forward fit may sit in
 // the wrong one (a 31 %-overlap bunny pair: 2.0 deg from its truth with residuals 5.8 times the noise, while the
 // reverse fit pointed 4.7 mm away, to the right one). Fine ICP again from the reverse fit's pose; the two fits are
-// compared as in fine_fit, by the trimmed RMS of the same share of the scan, and the better one is kept with its
+// compared at their common overlap (at_common_overlap), and the better one is kept with its
 // own bias fits and verdict. Only where the pose would be refused anyway (its std includes that discrepancy), so a
 // pose that is accepted costs nothing more.
 void restart_at_reverse_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference,
@@ -211,16 +225,14 @@ void restart_at_reverse_fit(const std::vector<Eigen::Vector3d>& scan, const IcpR
   quiet.progress = nullptr;
   other.icp = fine_fit(scan, reference, reverse.T_ref_scan, quiet, false);
   if (!other.icp.converged) return;
-  const double share = std::min(other.icp.inlier_fraction, result.icp.inlier_fraction);
-  const double rms_other = trimmed_rms(scan, reference, other.icp.T_ref_scan, share);
-  const double rms_this = trimmed_rms(scan, reference, result.icp.T_ref_scan, share);
-  if (!(rms_other < rms_this)) return;
+  const AtCommonOverlap compared = at_common_overlap(scan, reference, result.icp, other.icp);
+  if (!compared.b_better()) return;
   add_fit_bias(scan, reference, fine, other);
   char why[200];
   std::snprintf(why, sizeof why,
                 "the reverse fit landed %.3g mm away and fits better there (trimmed RMS of %.0f %% of the scan %.3g mm "
                 "against %.3g mm): fine ICP restarted there",
-                reverse.largest_displacement_mm, 100.0 * share, rms_other, rms_this);
+                reverse.largest_displacement_mm, 100.0 * compared.share, compared.rms_b_mm, compared.rms_a_mm);
   other.warnings.push_back(why);
   other.verdict = detail::judge_alignment(scan, reference, options, other);
   result = std::move(other);
