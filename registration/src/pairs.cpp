@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "conform/core/radix_sort.h"
 #include "conform/core/z_order.h"
 
 namespace conform::detail {
@@ -126,7 +127,7 @@ double fractional_overlap(const std::vector<Pair>& pairs, double min_fraction, d
     if (p.found) squared.push_back(p.distance * p.distance);
   }
   if (squared.empty()) return 0.0;
-  std::sort(squared.begin(), squared.end());
+  radix_sort(squared);  // every step of every fit: linear, not n log n
   const double n = static_cast<double>(pairs.size());
   const auto first = static_cast<std::size_t>(std::max(1.0, std::ceil(min_fraction * n)));
   double sum = 0.0, best_score = std::numeric_limits<double>::infinity();
