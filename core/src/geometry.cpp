@@ -60,6 +60,13 @@ Eigen::Vector3d centroid(const Cloud& cloud) { return mean_of(cloud.points, of_p
 Eigen::Vector3d centroid(const Mesh& mesh) { return mean_of(mesh.vertices, of_eigen, "a mesh"); }
 Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) { return mean_of(points, of_eigen, "points"); }
 
+double largest_displacement(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& A,
+                            const Eigen::Isometry3d& B) {
+  double largest = 0.0;
+  for (const Eigen::Vector3d& p : points) largest = std::max(largest, (A * p - B * p).norm());
+  return largest;
+}
+
 std::size_t count_non_finite(const Cloud& cloud) {
   std::size_t n = 0;
   for (const pcl::PointXYZ& p : cloud.points) n += p.getVector3fMap().allFinite() ? 0 : 1;

@@ -60,6 +60,18 @@ TEST(Geometry, TransformMovesPointsAndRotatesNormals) {
   EXPECT_LT((transformed(line, T_b_a).points[1] - Eigen::Vector3d(11, 20, 30)).norm(), 1e-12);
 }
 
+// A turn of 0.1 rad about z through the origin moves a point at radius r by 2 r sin(0.05); a pure shift moves all
+// points alike. The farthest point decides.
+TEST(Geometry, LargestDisplacementIsTheFarthestPointsMotion) {
+  const std::vector<Eigen::Vector3d> points = {{1, 0, 0}, {0, 3, 5}, {-2, 0, 1}};
+  const Eigen::Isometry3d turn(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()));
+  EXPECT_NEAR(largest_displacement(points, Eigen::Isometry3d::Identity(), turn), 6.0 * std::sin(0.05), 1e-12);
+  Eigen::Isometry3d shift = Eigen::Isometry3d::Identity();
+  shift.translation() = Eigen::Vector3d(0.3, -0.4, 0.0);
+  EXPECT_NEAR(largest_displacement(points, shift, Eigen::Isometry3d::Identity()), 0.5, 1e-12);
+  EXPECT_EQ(largest_displacement({}, shift, turn), 0.0);
+}
+
 TEST(Mesh, AreasAndNormalsOfAKnownTriangle) {
   const Mesh mesh = unit_right_triangle();
   EXPECT_DOUBLE_EQ(face_area(mesh, 0), 3.0);

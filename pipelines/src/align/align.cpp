@@ -106,7 +106,14 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
   IcpOptions every_pair = quiet;
   every_pair.estimate_overlap = false;
   every_pair.overlap = 1.0;
-  const IcpResult pulled = icp(scan, reference, start, every_pair);
+  // What is asked of it is the basin, not the minimum's last digits: an even subset of the scan, as in ICP's own
+  // coarse steps (IcpOptions::coarse_points).
+  const IcpResult pulled =
+      icp(fine.coarse_points > 0 ? stride_downsample(scan, fine.coarse_points) : scan, reference, start, every_pair);
+  // Landed within the direct fit's residual noise of it: one basin, and the fit from there would return to it.
+  if (direct.converged && largest_displacement(scan, direct.T_ref_scan, pulled.T_ref_scan) <= direct.degeneracy.noise_mm) {
+    return direct;
+  }
   IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
   if (!via.converged) return direct;
   if (!direct.converged) return via;

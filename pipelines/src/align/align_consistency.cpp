@@ -33,9 +33,7 @@ FitDiscrepancy discrepancy(const std::vector<Eigen::Vector3d>& scan, const IcpRe
   const Eigen::AngleAxisd turn(D.linear());
   const Eigen::Vector3d& centre = forward.degeneracy.centre;
   out.twist << turn.angle() * turn.axis(), D * centre - centre;
-  for (const Eigen::Vector3d& p : scan) {
-    out.largest_displacement_mm = std::max(out.largest_displacement_mm, (forward.T_ref_scan * p - other * p).norm());
-  }
+  out.largest_displacement_mm = largest_displacement(scan, forward.T_ref_scan, other);
   return out;
 }
 

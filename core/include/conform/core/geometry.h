@@ -50,4 +50,9 @@ Cloud transformed(const Cloud& cloud_a, const Eigen::Isometry3d& T_b_a);
 Mesh transformed(const Mesh& mesh_a, const Eigen::Isometry3d& T_b_a);
 Polyline transformed(const Polyline& polyline_a, const Eigen::Isometry3d& T_b_a);
 
+// How far two poses of the same points set them apart: the largest |A p - B p| over `points` (0 for none), in the
+// points' units. Two fits of one scan compared as the scan sees them, whatever their centres of rotation.
+double largest_displacement(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& A,
+                            const Eigen::Isometry3d& B);
+
 }  // namespace conform
