@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -373,6 +374,24 @@ TEST(WeldLayersMatrix, CoverageWithTheStatedBeadWidthPerCrater) {
   r = plan(c);
   EXPECT_TRUE(r.ok) << r.termination;
   for (const double pct : r.crater_coverage_pct) EXPECT_GE(pct, 99.0);
+}
+
+// A dense grid (0.4 x 0.27 mm) with noise 0.02 mm: each crater's fringe, where its depth falls through the threshold, is
+// broken up by the noise. It stays one crater: islands planned as craters of their own laid their beads over the
+// crater's (refused, 2.8 mm of overlap on a 301 x 301 grid). Three seeds.
+TEST(WeldLayersMatrix, NoisyFringeOnADenseGridStaysOneCrater) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE(seed);
+    Case c = base_case(0.02);
+    c.blade.seed = seed;
+    c.blade.cols = 301, c.blade.rows = 301;
+    c.blade.craters = {Crater{0.0, 0.0, 15.0, 2.0}, Crater{35.0, 10.0, 8.0, 1.0}, Crater{55.0, -30.0, 10.0, 1.5}};
+    c.weld.torch_distance_mm = 2.0;
+    const WeldLayerResult r = plan(c);
+    EXPECT_EQ(r.damage.regions.size(), 3u);
+    EXPECT_LE(r.overlap_mm_max, c.weld.max_overlap_mm);
+    expect_refilled(c, r);
+  }
 }
 
 TEST(WeldLayersMatrix, GridSpacings) {

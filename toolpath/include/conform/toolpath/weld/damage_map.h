@@ -13,8 +13,10 @@
 //      the few it does: features cannot inflate the estimate;
 //   4. which side is damage: the side of the reference with the larger volume beyond the threshold (sum of
 //      |d| - t over the nodes past it), ambiguous when the two are within a factor side_ratio_min;
-//   5. depth = d towards that side; the damaged regions are the 8-connected components of nodes deeper than the
-//      threshold t (default noise_factor x noise, at least min_threshold_mm).
+//   5. depth = d towards that side; the damaged regions are the nodes deeper than the threshold t (default
+//      noise_factor x noise, at least min_threshold_mm), grouped by hysteresis: two such nodes are one region when
+//      a chain of 8-connected nodes deeper than t / 2 joins them (a crater's fringe broken up by noise stays one
+//      crater).
 
 #include <cstddef>
 #include <string>
