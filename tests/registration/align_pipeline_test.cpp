@@ -116,6 +116,29 @@ void place_box(AlignInit init) {
 // FPFH in tests of its own, named *Fpfh*: PCL's feature objects are allocated by Eigen and freed by PCL's
 // uninstrumented libraries, which AddressSanitizer accepts only because sanitizer builds tell Eigen that malloc is
 // aligned (EIGEN_MALLOC_ALREADY_ALIGNED, cmake/ConformHelpers.cmake); these tests catch a regression of that.
+// The fine fit's options as align sets them: against a cloud with --overlap 0 the overlap is estimated, against a
+// mesh every pair is kept; a stated overlap trims to it and lowers the inlier floor with it; the rest is align's.
+TEST(AlignPipeline, FineOptionsFollowTheReferenceAndTheOverlap) {
+  AlignOptions options;
+  const IcpOptions cloud = align_fine_options(options, IcpMethod::kPointToPlane, 12.5, true);
+  EXPECT_EQ(cloud.method, IcpMethod::kPointToPlane);
+  EXPECT_EQ(cloud.max_correspondence_distance_mm, 12.5);
+  EXPECT_TRUE(cloud.estimate_overlap);
+  EXPECT_EQ(cloud.overlap, 1.0);
+  const IcpOptions mesh = align_fine_options(options, IcpMethod::kPointToSurface, 12.5, false);
+  EXPECT_FALSE(mesh.estimate_overlap);
+  EXPECT_EQ(mesh.overlap, 1.0);
+  EXPECT_EQ(mesh.kernel, options.kernel);
+  EXPECT_EQ(mesh.max_iterations, options.max_iterations);
+  EXPECT_EQ(mesh.free_tolerance_mm, options.free_tolerance_mm);
+  EXPECT_NEAR(mesh.free_tolerance_rad, options.free_tolerance_deg * kDeg, 1e-15);
+  options.overlap = 0.3;
+  const IcpOptions trimmed = align_fine_options(options, IcpMethod::kPointToPlane, 12.5, true);
+  EXPECT_FALSE(trimmed.estimate_overlap);
+  EXPECT_EQ(trimmed.overlap, 0.3);
+  EXPECT_LE(trimmed.min_inlier_fraction, 0.3);
+}
+
 TEST(AlignPipeline, PcaPlacesTheBoxAndWritesBothOutputs) { place_box(AlignInit::kPca); }
 TEST(AlignPipeline, FpfhPlacesTheBoxAndWritesBothOutputs) { place_box(AlignInit::kFpfh); }
 TEST(AlignPipeline, PairsPlaceTheBoxAndWriteBothOutputs) { place_box(AlignInit::kPairs); }

@@ -26,19 +26,12 @@
 
 namespace conform {
 
-namespace {
-
-std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const AlignOptions& options) {
-  if (options.scan_voxel_mm > 0.0) points = voxel_downsample(points, options.scan_voxel_mm);
-  return stride_downsample(points, options.max_scan_points);
-}
-
 // reference_is_cloud: with the overlap left to the data (--overlap 0), a cloud reference (another scan: partial
 // overlap is the rule) has it estimated in every step; a mesh (the nominal part, which the scan lies on) keeps every
 // pair, as trimming even 1-2 % of a plate's worst-fitting points (its steep walls, which fix its in-plane position)
 // moved the fit 0.05-0.1 mm at 0.02 mm of noise (AlignMatrixBossPlateMesh).
-IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm,
-                        bool reference_is_cloud) {
+IcpOptions align_fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm,
+                              bool reference_is_cloud) {
   IcpOptions icp;
   icp.method = method;
   icp.max_correspondence_distance_mm = max_distance_mm;
@@ -51,6 +44,13 @@ IcpOptions fine_options(const AlignOptions& options, IcpMethod method, double ma
   icp.free_tolerance_rad = options.free_tolerance_deg * M_PI / 180.0;
   icp.progress = options.progress;
   return icp;
+}
+
+namespace {
+
+std::vector<Eigen::Vector3d> thin(std::vector<Eigen::Vector3d> points, const AlignOptions& options) {
+  if (options.scan_voxel_mm > 0.0) points = voxel_downsample(points, options.scan_voxel_mm);
+  return stride_downsample(points, options.max_scan_points);
 }
 
 // The RMS of the smallest `share` of the scan's point-to-plane distances to a cloud reference at `T_ref_scan` (each
@@ -149,7 +149,7 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   // The probes only rank the starts: point-to-plane is as good for that and faster than point-to-surface.
   // The probes find the basin: every pair pulls (a start a few mm off slides home only if the part of the scan that
   // is off the surface is not trimmed away). The estimated overlap is the fine fit's, from the winner's pose.
-  coarse.multi_start.probe = fine_options(options, IcpMethod::kPointToPlane, max_distance_mm, false);
+  coarse.multi_start.probe = align_fine_options(options, IcpMethod::kPointToPlane, max_distance_mm, false);
   coarse.multi_start.probe.max_iterations = 15;
   coarse.multi_start.probe.progress = nullptr;
   coarse.progress = options.progress;
@@ -373,7 +373,7 @@ AlignResult run_align(const AlignOptions& options) {
                                ? options.max_distance_mm
                                : kAlignAutoDistanceShare * bounding_box(reference_mesh).diagonal();
   place_coarsely(scan, reference, reference_mesh, options, result.max_distance_mm, result);
-  IcpOptions fine = fine_options(options, result.method, result.max_distance_mm, !reference_mesh.has_faces());
+  IcpOptions fine = align_fine_options(options, result.method, result.max_distance_mm, !reference_mesh.has_faces());
   // The coarse candidates showed motions along which the pose can move without changing the fit (a cylinder's
   // axis shift and turn): hold every loose motion at the winner's, as free, rather than letting noise move it.
   if (!result.coarse.ranking.free_motions.empty()) fine.start_std_mm = fine.start_std_rad = 0.0;

@@ -275,14 +275,8 @@ bool inspect_best_fit_correction(const std::vector<Eigen::Vector3d>& points, con
     correction = aligned.T_ref_scan;
     return true;
   }
-  const AlignOptions align;
-  IcpOptions fine;
-  fine.method = default_align_method(true);
-  fine.max_correspondence_distance_mm = kAlignAutoDistanceShare * bounding_box(cad_mesh).diagonal();
-  fine.kernel = align.kernel;
-  fine.max_iterations = align.max_iterations;
-  fine.free_tolerance_mm = align.free_tolerance_mm;
-  fine.free_tolerance_rad = radians(align.free_tolerance_deg);
+  const IcpOptions fine = align_fine_options(AlignOptions(), default_align_method(true),
+                                            kAlignAutoDistanceShare * bounding_box(cad_mesh).diagonal(), false);
   const IcpResult fit = icp(points, IcpReference(cad_mesh), Eigen::Isometry3d::Identity(), fine);
   if (!fit.converged) return false;
   correction = fit.T_ref_scan;

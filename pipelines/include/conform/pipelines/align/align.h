@@ -161,6 +161,13 @@ struct AlignResult {
   Mesh reference;  // with options.keep_geometry: the reference as read, mm (else empty)
 };
 
+// The fine ICP's options align uses for `options` (its method, maximum pair distance and the reference's kind
+// decided): trimmed to options.overlap, or with the overlap estimated in every step against a cloud when it is 0 (a
+// mesh keeps every pair), align's kernel, iterations and free-motion tolerances, its progress. For a job that runs
+// align's fine fit on geometry it already holds (inspect's best fit after --transform).
+IcpOptions align_fine_options(const AlignOptions& options, IcpMethod method, double max_distance_mm,
+                              bool reference_is_cloud);
+
 // Throws conform::Error for bad input: invalid options, unreadable or empty files, a pairs file that is not 3+
 // valid pairs, scan and reference of wildly different sizes (units), point-to-surface against a cloud, an output
 // that cannot be written. Not converging, or a pose that is not consistent, is not an error: see result.verdict.
