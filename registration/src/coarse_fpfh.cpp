@@ -24,7 +24,8 @@ constexpr double kMinPointsPerVoxel = 4.0;  // the automatic voxel: at least 2 p
 constexpr double kCleaningVoxel = 1.0 / 3.0;
 
 struct Described {
-  std::vector<Eigen::Vector3f> points;  // relative to the side's origin
+  std::vector<Eigen::Vector3f> points;   // relative to the side's origin
+  std::vector<Eigen::Vector3f> normals;  // turned away from the side's centroid
   std::vector<detail::FpfhHistogram> features;
 };
 
@@ -67,28 +68,31 @@ Described describe(const std::vector<Eigen::Vector3d>& input, const Eigen::Vecto
   const pcl::PointCloud<pcl::Normal> normals = estimate_normals(cloud, normal_options);
   Described d;
   d.points.reserve(down.size());
-  std::vector<Eigen::Vector3f> turned;
-  turned.reserve(down.size());
+  d.normals.reserve(down.size());
   for (std::size_t i = 0; i < down.size(); ++i) {
     d.points.push_back(cloud.points[i].getVector3fMap());
     // Away from the centroid rather than towards it: the same rule on both sides keeps the histograms comparable.
-    turned.push_back(-normals[i].getNormalVector3fMap());
+    d.normals.push_back(-normals[i].getNormalVector3fMap());
   }
-  d.features = detail::fpfh_histograms(d.points, turned, static_cast<float>(radius_mm));
+  d.features = detail::fpfh_histograms(d.points, d.normals, static_cast<float>(radius_mm));
   return d;
 }
 
-// Correspondences (scan point, reference point of the nearest feature) that pass the filters: mutual (the scan
-// feature nearest to that reference feature is the scan's own) and the ratio test (nearest over second-nearest
-// feature distance below `ratio`, Lowe 2004). All nearest-feature pairs when fewer than `minimum` pass (the filters
-// are a help, not a condition).
-std::vector<std::pair<int, int>> matched(const Described& s, const Described& r, bool mutual, double ratio,
-                                         std::size_t minimum) {
-  const detail::HistogramIndex in_reference(r.features);
-  const detail::HistogramIndex in_scan(s.features);
+struct Matches {
+  std::vector<std::pair<int, int>> all;   // every scan point with its nearest reference feature
+  std::vector<std::pair<int, int>> kept;  // those that pass the filters
+};
+
+// Correspondences (scan point, reference point of the nearest feature) and those that pass the filters: mutual (the
+// scan feature nearest to that reference feature is the scan's own) and the ratio test (nearest over second-nearest
+// feature distance below `ratio`, Lowe 2004).
+Matches matched(const std::vector<detail::FpfhHistogram>& scan, const std::vector<detail::FpfhHistogram>& reference,
+                bool mutual, double ratio) {
+  const detail::HistogramIndex in_reference(reference);
+  const detail::HistogramIndex in_scan(scan);
   // Per scan point: its nearest reference feature (-1: none) and whether the pair passes the filters; searched in
   // parallel, collected in scan order.
-  const std::size_t n = s.points.size();
+  const std::size_t n = scan.size();
   std::vector<int> nearest(n, -1);
   std::vector<char> passes(n, 0);
 #pragma omp parallel
@@ -98,26 +102,26 @@ std::vector<std::pair<int, int>> matched(const Described& s, const Described& r,
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n); ++k) {
       const auto i = static_cast<std::size_t>(k);
-      const detail::FpfhHistogram& f = s.features[i];
+      const detail::FpfhHistogram& f = scan[i];
       if (!std::isfinite(f[0])) continue;
       in_reference.knn(f, 2, index, distance);
       if (index.size() < 2) continue;
       nearest[i] = static_cast<int>(index[0]);
       if (ratio > 0.0 && !(std::sqrt(distance[0]) < ratio * std::sqrt(distance[1]))) continue;
       if (mutual) {
-        in_scan.knn(r.features[index[0]], 1, back, back_distance);
+        in_scan.knn(reference[index[0]], 1, back, back_distance);
         if (back.empty() || back[0] != i) continue;
       }
       passes[i] = 1;
     }
   }
-  std::vector<std::pair<int, int>> all, kept;
+  Matches out;
   for (std::size_t i = 0; i < n; ++i) {
     if (nearest[i] < 0) continue;
-    all.emplace_back(static_cast<int>(i), nearest[i]);
-    if (passes[i] != 0) kept.emplace_back(static_cast<int>(i), nearest[i]);
+    out.all.emplace_back(static_cast<int>(i), nearest[i]);
+    if (passes[i] != 0) out.kept.emplace_back(static_cast<int>(i), nearest[i]);
   }
-  return kept.size() >= minimum ? kept : all;
+  return out;
 }
 
 std::vector<Eigen::Vector3d> as_vectors(const std::vector<Eigen::Vector3f>& points) {
@@ -194,6 +198,9 @@ bool FpfhOptions::IsValid(std::string* error) const {
     why = "outlier_neighbours must be >= 0 (0: no outlier removal) and outlier_sigmas finite and > 0";
   } else if (min_matched_points < 3) {
     why = "min_matched_points must be >= 3";
+  } else if (!(narrow_feature_radius == 0.0 ||
+               (narrow_feature_radius > 1.0 && narrow_feature_radius < feature_radius))) {
+    why = "narrow_feature_radius must be 0 (none) or in (1, feature_radius) voxels";
   } else if (!(similarity >= 0.0 && similarity < 1.0)) {
     why = "similarity must be in [0, 1)";
   }
@@ -240,9 +247,28 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   }
   result.scan_points = s.points.size();
   result.reference_points = r.points.size();
+  result.feature_radius_mm = options.feature_radius * v;
 
-  const std::vector<std::pair<int, int>> matches =
-      matched(s, r, options.mutual, options.ratio, options.min_matched_points);
+  Matches found_matches = matched(s.features, r.features, options.mutual, options.ratio);
+  const bool filtered = options.mutual || options.ratio > 0.0;
+  if (filtered && found_matches.kept.size() < options.min_matched_points && options.narrow_feature_radius > 0.0) {
+    // Few features match both ways: the two sides' histograms of the same places differ. The usual cause is a
+    // support wider than the part's walls where the scan sees one side of them: the reference's histograms then
+    // hold the far faces too (a one-side scan of 10 mm plates at a 19 mm radius). Narrower supports, the
+    // same points and normals; kept when more of them match both ways.
+    const float narrow = static_cast<float>(options.narrow_feature_radius * v);
+    const std::vector<detail::FpfhHistogram> s_narrow = detail::fpfh_histograms(s.points, s.normals, narrow),
+                                             r_narrow = detail::fpfh_histograms(r.points, r.normals, narrow);
+    Matches narrow_matches = matched(s_narrow, r_narrow, options.mutual, options.ratio);
+    if (narrow_matches.kept.size() > found_matches.kept.size()) {
+      found_matches = std::move(narrow_matches);
+      result.feature_radius_mm = options.narrow_feature_radius * v;
+    }
+  }
+  result.filtered_points = found_matches.kept.size();
+  // The filters are a help, not a condition: every nearest-feature pair when too few pass them.
+  const std::vector<std::pair<int, int>>& matches =
+      found_matches.kept.size() >= options.min_matched_points ? found_matches.kept : found_matches.all;
   result.matched_points = matches.size();
   if (matches.size() < 3) return result;
   FeatureRansacOptions ransac;

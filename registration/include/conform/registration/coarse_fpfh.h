@@ -22,7 +22,11 @@ struct FpfhOptions {
   // point spacings on both sides).
   double voxel_mm = 0.0;
   std::size_t target_points = 2000;
-  double feature_radius = 5.0;        // FPFH support radius, in voxels
+  double feature_radius = 5.0;  // FPFH support radius, in voxels
+  // When fewer than min_matched_points correspondences pass the match filters at feature_radius, the features are
+  // computed again at this radius (voxels) and the set with more passing is used: a support wider than the part's
+  // walls sees their far faces in the reference but not in a scan from one side. 0: never.
+  double narrow_feature_radius = 2.5;
   double inlier_distance = 1.5;       // a RANSAC inlier is within this many voxels of the reference
   double min_inlier_fraction = 0.25;  // of the downsampled scan points, for a hypothesis to count
   int max_iterations = 100000;        // RANSAC samples at most (feature_ransac.h; it stops early at `confidence`)
@@ -56,14 +60,16 @@ struct FpfhHypothesis {
 struct FpfhResult {
   std::vector<FpfhHypothesis> hypotheses;  // best first; the fields below are the best's
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-  bool found = false;            // a hypothesis reached min_inlier_fraction
-  double inlier_fraction = 0.0;  // of the downsampled scan points, within inlier_distance
-  double voxel_mm = 0.0;         // used
-  std::size_t scan_points = 0;   // after downsampling
-  std::size_t matched_points = 0;  // correspondences RANSAC drew from (after the match filters)
+  bool found = false;               // a hypothesis reached min_inlier_fraction
+  double inlier_fraction = 0.0;     // of the downsampled scan points, within inlier_distance
+  double voxel_mm = 0.0;            // used
+  std::size_t scan_points = 0;      // after downsampling
+  std::size_t matched_points = 0;   // correspondences RANSAC drew from (after the match filters)
+  std::size_t filtered_points = 0;  // correspondences that passed the match filters
+  double feature_radius_mm = 0.0;   // the FPFH support radius used
   std::size_t reference_points = 0;
-  int iterations = 0;         // RANSAC samples drawn
-  double match_share = 0.0;   // of the correspondences, consistent with the best pose
+  int iterations = 0;        // RANSAC samples drawn
+  double match_share = 0.0;  // of the correspondences, consistent with the best pose
 };
 
 // Throws conform::Error for invalid options or fewer than 10 points on either side after downsampling.
