@@ -3,6 +3,7 @@
 #include "conform/core/median.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -183,6 +184,9 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
   const double noise = std::max(noise_mm, 1e-6);
   const float plane_sq = static_cast<float>(o.radius_mm) * static_cast<float>(o.radius_mm);  // as the tree compares
   const float wide_sq = static_cast<float>(dent_radius) * static_cast<float>(dent_radius);
+  const double wider = std::min(2.0 * o.radius_mm, std::max(o.radius_mm, dent_radius));
+  const float wider_sq = static_cast<float>(wider) * static_cast<float>(wider);
+  std::vector<std::pair<Eigen::Vector3d, float>> face_points;  // on the face within `wider`, with squared distance
   std::vector<double> near_mean(t.points.size(), 0.0);
   std::vector<int> indices;
   std::vector<float> sq;
@@ -196,9 +200,8 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     const Eigen::Vector3d across = axis.cross(along);
     scan_tree.radius(t.points[i].cast<float>(), static_cast<float>(std::max(o.radius_mm, dent_radius)), indices,
                      sq);
-    uvr.clear();
     wide.clear();
-    values.clear();
+    face_points.clear();
     std::size_t flank = 0;
     for (std::size_t j = 0; j < indices.size(); ++j) {
       const PointResidual& p = r[static_cast<std::size_t>(indices[j])];
@@ -207,13 +210,21 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
       const Eigen::Vector3d d = scan[static_cast<std::size_t>(indices[j])] - t.points[i];
       const Eigen::Vector3d point(d.dot(along), d.dot(across), p.residual_mm);
       if (sq[j] <= wide_sq) wide.push_back(point);
-      if (sq[j] > plane_sq) continue;
-      uvr.push_back(point);
-      values.push_back(p.residual_mm);
+      if (sq[j] <= wider_sq) face_points.push_back({point, sq[j]});
     }
     SicpRowMisfit& m = out[i];
     m.flank_points = flank;
     fit_dent_bump(wide, o.dent_sigma_mm, noise, o.min_points, m);
+    // The plane within radius_mm; where those points do not fix one (laser stripes: one stripe crossing the disc is
+    // a line), within twice that, so that a row between stripes is still checked.
+    for (const float within : {plane_sq, wider_sq}) {
+    uvr.clear();
+    values.clear();
+    for (const auto& [point, d2] : face_points) {
+      if (d2 > within) continue;
+      uvr.push_back(point);
+      values.push_back(point.z());
+    }
     if (uvr.size() < o.min_points) continue;
     const double centre = median(values);
     for (double& v : values) v = std::abs(v - centre);
@@ -249,6 +260,8 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
       m.near_points = near;
       near_mean[i] = near_sum / static_cast<double>(near);
       m.local_offset_se_mm = noise / std::sqrt(static_cast<double>(near));
+    }
+    break;
     }
   }
   compare_with_neighbours(t.points, closed, o, near_mean, out);

@@ -5,7 +5,8 @@
 // can stay near the noise (the segment tilts to follow the dent part way). So the residuals are judged by their
 // structure at each row, against what the point count can resolve, not by their RMS against the noise:
 //
-//   - at each row, the scan points of the face within radius_mm of the compensated row (the model's normal there
+//   - at each row, the scan points of the face within radius_mm of the compensated row (within twice that where
+//     those do not fix a plane: laser stripes, one of which can be all the disc holds) (the model's normal there
 //     within face_angle_deg of the row's tool axis: the flank and the rim are left out), their residuals against the
 //     model's image of the nominal surface at that place, fitted by a plane r = a + b u + c v in the row's frame (u
 //     along the path, v across it): a is where the scanned surface lies off the model's at the row (the path's error
