@@ -3,8 +3,8 @@
 #include "conform/core/median.h"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -215,54 +215,57 @@ std::vector<SicpRowMisfit> sicp_surface_misfit(const Trajectory& t, const std::v
     SicpRowMisfit& m = out[i];
     m.flank_points = flank;
     fit_dent_bump(wide, o.dent_sigma_mm, noise, o.min_points, m);
-    // The plane within radius_mm; where those points do not fix one (laser stripes: one stripe crossing the disc is
-    // a line), within twice that, so that a row between stripes is still checked.
-    for (const float within : {plane_sq, wider_sq}) {
-    uvr.clear();
-    values.clear();
-    for (const auto& [point, d2] : face_points) {
-      if (d2 > within) continue;
-      uvr.push_back(point);
-      values.push_back(point.z());
-    }
-    if (uvr.size() < o.min_points) continue;
-    const double centre = median(values);
-    for (double& v : values) v = std::abs(v - centre);
-    const double limit = std::max(4.0 * 1.4826 * median(values), 4.0 * noise);
-    Eigen::Matrix3d XtX = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d Xtr = Eigen::Vector3d::Zero();
-    std::size_t used = 0, near = 0;
-    double near_sum = 0.0;
-    for (const Eigen::Vector3d& p : uvr) {
-      if (std::abs(p.z() - centre) > limit) continue;
-      if (p.head<2>().squaredNorm() <= o.near_radius_mm * o.near_radius_mm) near_sum += p.z(), ++near;
-      const Eigen::Vector3d x(1.0, p.x(), p.y());
-      XtX += x * x.transpose();
-      Xtr += x * p.z();
-      ++used;
-    }
-    if (used < o.min_points || XtX.determinant() <= 1e-9 * std::pow(XtX(0, 0), 3)) continue;
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(XtX);
-    const Eigen::Vector3d fit = ldlt.solve(Xtr);
-    const Eigen::Matrix3d cov = noise * noise * ldlt.solve(Eigen::Matrix3d::Identity());
-    m.points = used;
-    m.offset_mm = fit(0);
-    m.offset_se_mm = std::sqrt(std::max(cov(0, 0), 0.0));
-    // The surface h = a + b u + c v along the normal: its normal tilts by -(b, c); so should the tool normal.
-    const Eigen::Vector3d expected = (predicted[i] - fit(1) * along - fit(2) * across).normalized();
-    const Eigen::Vector3d difference = axis - expected;
-    m.normal_error_deg = std::acos(std::clamp(expected.dot(axis), -1.0, 1.0)) * kDegPerRad;
-    m.along_error_deg = std::abs(std::asin(std::clamp(difference.dot(along), -1.0, 1.0))) * kDegPerRad;
-    m.across_error_deg = std::abs(std::asin(std::clamp(difference.dot(across), -1.0, 1.0))) * kDegPerRad;
-    m.along_z = std::abs(fit(1)) / std::sqrt(std::max(cov(1, 1), 1e-30));
-    m.across_z = std::abs(fit(2)) / std::sqrt(std::max(cov(2, 2), 1e-30));
-    if (near >= 5) {
-      m.near_points = near;
-      near_mean[i] = near_sum / static_cast<double>(near);
-      m.local_offset_se_mm = noise / std::sqrt(static_cast<double>(near));
-    }
-    break;
-    }
+    // The plane r = a + b u + c v through the face's points within `within` (squared, mm^2); false when they do not
+    // fix one.
+    const auto fit_plane = [&](float within) {
+      uvr.clear();
+      values.clear();
+      for (const auto& [point, d2] : face_points) {
+        if (d2 > within) continue;
+        uvr.push_back(point);
+        values.push_back(point.z());
+      }
+      if (uvr.size() < o.min_points) return false;
+      const double centre = median(values);
+      for (double& v : values) v = std::abs(v - centre);
+      const double limit = std::max(4.0 * 1.4826 * median(values), 4.0 * noise);
+      Eigen::Matrix3d XtX = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d Xtr = Eigen::Vector3d::Zero();
+      std::size_t used = 0, near = 0;
+      double near_sum = 0.0;
+      for (const Eigen::Vector3d& p : uvr) {
+        if (std::abs(p.z() - centre) > limit) continue;
+        if (p.head<2>().squaredNorm() <= o.near_radius_mm * o.near_radius_mm) near_sum += p.z(), ++near;
+        const Eigen::Vector3d x(1.0, p.x(), p.y());
+        XtX += x * x.transpose();
+        Xtr += x * p.z();
+        ++used;
+      }
+      if (used < o.min_points || XtX.determinant() <= 1e-9 * std::pow(XtX(0, 0), 3)) return false;
+      const Eigen::LDLT<Eigen::Matrix3d> ldlt(XtX);
+      const Eigen::Vector3d fit = ldlt.solve(Xtr);
+      const Eigen::Matrix3d cov = noise * noise * ldlt.solve(Eigen::Matrix3d::Identity());
+      m.points = used;
+      m.offset_mm = fit(0);
+      m.offset_se_mm = std::sqrt(std::max(cov(0, 0), 0.0));
+      // The surface h = a + b u + c v along the normal: its normal tilts by -(b, c); so should the tool normal.
+      const Eigen::Vector3d expected = (predicted[i] - fit(1) * along - fit(2) * across).normalized();
+      const Eigen::Vector3d difference = axis - expected;
+      m.normal_error_deg = std::acos(std::clamp(expected.dot(axis), -1.0, 1.0)) * kDegPerRad;
+      m.along_error_deg = std::abs(std::asin(std::clamp(difference.dot(along), -1.0, 1.0))) * kDegPerRad;
+      m.across_error_deg = std::abs(std::asin(std::clamp(difference.dot(across), -1.0, 1.0))) * kDegPerRad;
+      m.along_z = std::abs(fit(1)) / std::sqrt(std::max(cov(1, 1), 1e-30));
+      m.across_z = std::abs(fit(2)) / std::sqrt(std::max(cov(2, 2), 1e-30));
+      if (near >= 5) {
+        m.near_points = near;
+        near_mean[i] = near_sum / static_cast<double>(near);
+        m.local_offset_se_mm = noise / std::sqrt(static_cast<double>(near));
+      }
+      return true;
+    };
+    // Within radius_mm; where those points do not fix a plane (laser stripes: one stripe crossing the disc is a
+    // line), within twice that, so that a row between stripes is still checked.
+    if (!fit_plane(plane_sq)) fit_plane(wider_sq);
   }
   compare_with_neighbours(t.points, closed, o, near_mean, out);
   return out;

@@ -111,7 +111,8 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
   const IcpResult pulled =
       icp(fine.coarse_points > 0 ? stride_downsample(scan, fine.coarse_points) : scan, reference, start, every_pair);
   // Landed within the direct fit's residual noise of it: one basin, and the fit from there would return to it.
-  if (direct.converged && largest_displacement(scan, direct.T_ref_scan, pulled.T_ref_scan) <= direct.degeneracy.noise_mm) {
+  if (direct.converged &&
+      largest_displacement(scan, direct.T_ref_scan, pulled.T_ref_scan) <= direct.degeneracy.noise_mm) {
     return direct;
   }
   IcpResult via = icp(scan, reference, pulled.T_ref_scan, quiet);
