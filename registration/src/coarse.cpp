@@ -79,6 +79,9 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
                                               options.inlier_floor_share * box.diagonal().norm());
   }
   result.inlier_distance_mm = multi_start.inlier_distance_mm;
+  if (options.probe_thin_walls && result.fpfh_used && multi_start.wall_max_thickness_mm == 0.0) {
+    multi_start.wall_max_thickness_mm = options.fpfh.feature_radius * result.fpfh.voxel_mm;
+  }
   report(options.progress, "coarse: starts", 0.0);
   result.ranking = rank_starts(scan, reference, starts, multi_start);
   report(options.progress, "coarse: starts", 1.0);

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <numeric>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
+#include "conform/registration/thin_walls.h"
 
 namespace conform {
 
@@ -104,6 +107,33 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
     if (std::abs(u - v) <= similarity * std::max(u, v)) {
       for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
         if (std::abs(degrees - 180.0) > 1.0) add(k, degrees > 180.0 ? degrees - 360.0 : degrees);
+      }
+    }
+  }
+  return out;
+}
+
+// Each base pose shifted through each thin wall: by -t, 0 or +t along each of the wall's normal directions (reference
+// frame), every combination but no shift, labelled "... shifted through a 5.0 mm wall (+1, 0, -1)".
+std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, const std::vector<ThinWall>& walls) {
+  std::vector<CoarseStart> out;
+  for (const StartReport& base : bases) {
+    for (const ThinWall& wall : walls) {
+      const auto m = static_cast<int>(wall.directions.size());
+      int combinations = 1;
+      for (int k = 0; k < m; ++k) combinations *= 3;
+      for (int c = 1; c < combinations; ++c) {  // c in base 3, digit k the step along direction k: 0, +1, -1
+        Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+        std::string steps;
+        for (int k = 0, rest = c; k < m; ++k, rest /= 3) {
+          const int step = rest % 3 == 2 ? -1 : rest % 3;
+          shift += step * wall.thickness_mm * wall.directions[static_cast<std::size_t>(k)];
+          steps += (k > 0 ? ", " : "") + std::string(step > 0 ? "+1" : step < 0 ? "-1" : "0");
+        }
+        char thickness[32];
+        std::snprintf(thickness, sizeof thickness, "%.1f", wall.thickness_mm);
+        out.push_back({base.label + " shifted through a " + thickness + " mm wall (" + steps + ")",
+                       Eigen::Translation3d(shift) * base.T_probe});
       }
     }
   }
@@ -243,6 +273,10 @@ bool MultiStartOptions::IsValid(std::string* error) const {
     why = "distinct_deg must be finite and > 0, distinct_mm finite and >= 0";
   } else if (settle_iterations < 0) {
     why = "settle_iterations must be >= 0";
+  } else if (!(wall_max_thickness_mm >= 0.0) || !std::isfinite(wall_max_thickness_mm)) {
+    why = "wall_max_thickness_mm must be finite and >= 0 (0: thin walls not probed)";
+  } else if (wall_screen_points < probe.min_correspondences || wall_screen_iterations < 1) {
+    why = "wall_screen_points must be at least probe.min_correspondences and wall_screen_iterations >= 1";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -287,8 +321,8 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
     return out;
   };
-  const auto probe_start = [&](const CoarseStart& start) {
-    return run_probe(start, start.T_ref_scan, options.probe.max_iterations);
+  const auto probe_start = [&](const CoarseStart& start, int iterations) {
+    return run_probe(start, start.T_ref_scan, iterations);
   };
   // Start i's probe run on to convergence from where it ended (MultiStartOptions::settle_iterations).
   const auto settled = [&](std::size_t i) {
@@ -297,7 +331,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   };
   // The probes are independent and each too small to share out (icp() runs a few thousand points on one thread):
   // one start a thread, merged in the order given, so the result is the same for any number of threads.
-  const auto probe_all = [&](const std::vector<CoarseStart>& batch) {
+  const auto probe_all = [&](const std::vector<CoarseStart>& batch, int iterations) {
     std::vector<Probe> probes(batch.size());
     std::vector<std::exception_ptr> failed(batch.size());  // an exception must not leave a parallel region
     const auto n = static_cast<std::ptrdiff_t>(batch.size());
@@ -305,7 +339,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     for (std::ptrdiff_t k = 0; k < n; ++k) {
       const auto i = static_cast<std::size_t>(k);
       try {
-        probes[i] = probe_start(batch[i]);
+        probes[i] = probe_start(batch[i], iterations);
       } catch (...) {
         failed[i] = std::current_exception();
       }
@@ -322,15 +356,14 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       }
     }
   };
-  probe_all(starts);
+  probe_all(starts, options.probe.max_iterations);
   if (options.probe_reference_symmetry) {
     // The best pose turned by the reference's own candidate symmetries: if the reference (or the part of it the scan
     // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
     // not any start happened to land there (a partial scan of a symmetric plate: every FPFH run may agree).
     const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
-    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
+    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity), options.probe.max_iterations);
   }
-  const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
   const Eigen::Vector3d centre =
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
       static_cast<double>(subset.size());
@@ -339,15 +372,70 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
                         : options.distinct_mm > 0.0 ? options.distinct_mm
                                                     : std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
   const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;
+  const auto apart = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return rotation_angle(b * a.inverse()) > far_rad || (b * centre - a * centre).norm() > far_mm;
+  };
+  if (by_share && options.wall_max_thickness_mm > 0.0 && options.wall_bases > 0) {
+    ThinWallOptions wall_options;
+    wall_options.max_thickness_mm = options.wall_max_thickness_mm;
+    const std::vector<ThinWall> walls = thin_walls(reference, wall_options);
+    if (!walls.empty()) {
+      // The best distinct poses so far, best first: a scan shifted through a wall may also be turned by a
+      // near-symmetry, and the turn's probe is not always the best.
+      std::vector<std::size_t> order(result.starts.size());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return better(result.starts[a], result.starts[b]); });
+      std::vector<StartReport> bases;
+      for (const std::size_t i : order) {
+        const StartReport& s = result.starts[i];
+        const bool seen = std::any_of(bases.begin(), bases.end(),
+                                      [&](const StartReport& b) { return !apart(b.T_probe, s.T_probe); });
+        if (!seen) bases.push_back(s);
+        if (bases.size() == options.wall_bases) break;
+      }
+      std::vector<CoarseStart> shifted = wall_starts(bases, walls);
+      if (options.wall_probes < shifted.size()) {
+        // Screened by a quick probe on fewer points: where a shifted start's ICP lands decides, not the start itself
+        // (a scan a wall off is often turned a few degrees as well, and the start's own share is near 0).
+        const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
+        std::vector<double> share(shifted.size(), -1.0);
+        std::vector<std::exception_ptr> failed(shifted.size());
+        const auto n = static_cast<std::ptrdiff_t>(shifted.size());
+#pragma omp parallel for schedule(dynamic, 1)
+        for (std::ptrdiff_t k = 0; k < n; ++k) {
+          const auto i = static_cast<std::size_t>(k);
+          try {
+            IcpOptions quick = options.probe;
+            quick.progress = nullptr;
+            quick.max_iterations = options.wall_screen_iterations;
+            const IcpResult r = icp(few, reference, shifted[i].T_ref_scan, quick);
+            share[i] = share_of(inliers(few, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
+          } catch (...) {
+            failed[i] = std::current_exception();
+          }
+        }
+        for (const std::exception_ptr& e : failed) {
+          if (e) std::rethrow_exception(e);
+        }
+        std::vector<std::size_t> order_shifted(shifted.size());
+        std::iota(order_shifted.begin(), order_shifted.end(), std::size_t{0});
+        std::stable_sort(order_shifted.begin(), order_shifted.end(),
+                         [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
+        std::vector<CoarseStart> kept;
+        for (std::size_t k = 0; k < options.wall_probes; ++k) kept.push_back(shifted[order_shifted[k]]);
+        shifted = std::move(kept);
+      }
+      probe_all(shifted, options.probe.max_iterations);
+    }
+  }
+  const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
   if (by_share && options.free_step_share > 0.0) {
     const auto b = static_cast<std::size_t>(result.best);
     const double step_mm = std::max(options.free_step_share * size_mm, 3.0 * options.inlier_distance_mm);
     result.free_motions =
         symmetric_motions(subset, reference, best.T_probe, constraints[b], masks[b], step_mm, reach, options);
   }
-  const auto apart = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-    return rotation_angle(b * a.inverse()) > far_rad || (b * centre - a * centre).norm() > far_mm;
-  };
   // Whether start j (as `o`, its probe's figures and inlier mask `m`) competes with the best (`b`, mask `bm`): close
   // in score, elsewhere, not along a free motion, not told apart. The flags are set on start j.
   const auto competes = [&](std::size_t j, const StartReport& b, const std::vector<char>& bm, const StartReport& o,

@@ -15,58 +15,15 @@
 #include "conform/core/random.h"
 #include "conform/registration/coarse.h"
 #include "conform/registration/icp_reference.h"
+#include "plates_part.h"
 #include "registration_test_util.h"
 
 namespace conform {
 namespace {
 
-const std::vector<Eigen::AlignedBox3d>& plates() {
-  static const std::vector<Eigen::AlignedBox3d> boxes = {
-      Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(120, 80, 10)),    // base
-      Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 10), Eigen::Vector3d(120, 10, 70)),   // upright
-      Eigen::AlignedBox3d(Eigen::Vector3d(25, 10, 10), Eigen::Vector3d(35, 60, 50)),  // tall rib
-      Eigen::AlignedBox3d(Eigen::Vector3d(80, 10, 10), Eigen::Vector3d(90, 40, 30)),  // short rib
-  };
-  return boxes;
-}
-
-// Points uniform on the part's outer surface (the faces of its boxes outside the other boxes), about `density` per
-// mm^2, with `noise` mm along each axis; with `towards` non-zero only those whose outward normal has a cosine above
-// 0.3 with it (a scan from one side).
-std::vector<Eigen::Vector3d> surface(double density, double noise, const Eigen::Vector3d& towards, Random& random) {
-  std::vector<Eigen::Vector3d> out;
-  for (const Eigen::AlignedBox3d& box : plates()) {
-    const Eigen::Vector3d size = box.sizes();
-    for (int axis = 0; axis < 3; ++axis) {
-      for (const int side : {-1, 1}) {
-        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-        normal[axis] = side;
-        if (towards.norm() > 0.0 && normal.dot(towards.normalized()) <= 0.3) continue;
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        const auto count = static_cast<int>(density * size[u] * size[v]);
-        for (int k = 0; k < count; ++k) {
-          Eigen::Vector3d p;
-          p[axis] = side < 0 ? box.min()[axis] : box.max()[axis];
-          p[u] = box.min()[u] + random.uniform(0.0, size[u]);
-          p[v] = box.min()[v] + random.uniform(0.0, size[v]);
-          bool inside = false;  // covered by another box: not on the part's surface
-          for (const Eigen::AlignedBox3d& other : plates()) {
-            if (&other == &box) continue;
-            inside = inside ||
-                     ((p.array() > other.min().array() - 1e-9).all() && (p.array() < other.max().array() + 1e-9).all());
-          }
-          if (inside) continue;
-          out.push_back(p + noise * Eigen::Vector3d(random.normal(), random.normal(), random.normal()));
-        }
-      }
-    }
-  }
-  return out;
-}
-
 TEST(FpfhSupport, ANarrowerSupportMatchesAOneSideScanOfThinPlates) {
   Random random(5);
-  const std::vector<Eigen::Vector3d> reference = surface(1.0, 0.0, Eigen::Vector3d::Zero(), random);
+  const std::vector<Eigen::Vector3d> reference = test::plates_surface(10.0, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
   Mesh reference_mesh;
   reference_mesh.vertices = reference;
   const Eigen::Vector3d towards_scanner(0.3, 0.7, 0.65);
@@ -75,7 +32,7 @@ TEST(FpfhSupport, ANarrowerSupportMatchesAOneSideScanOfThinPlates) {
   for (int trial = 0; trial < trials; ++trial) {
     const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 100.0, Eigen::Vector3d(60, 30, 30));
     const std::vector<Eigen::Vector3d> scan =
-        test::transformed_points(surface(1.0, 0.03, towards_scanner, random), truth.inverse());
+        test::transformed_points(test::plates_surface(10.0, 1.0, 0.03, towards_scanner, random), truth.inverse());
     FpfhOptions options;
     options.seed = static_cast<std::uint64_t>(trial + 1);
     const FpfhResult wide_only = [&] {

@@ -40,6 +40,10 @@ struct CoarseOptions {
   // symmetries (multi_start.h): a near-symmetric part placed one index off (a flange one bolt hole round) is found
   // there, or the result is ambiguous. false: kNone returns the identity unranked.
   bool probe_given_start = false;
+  // With FPFH: the best poses are also probed shifted through the reference's walls thinner than the FPFH support
+  // (its radius at the voxel used: a histogram there holds both faces of a plate, so features cannot tell them
+  // apart; multi_start.h wall_max_thickness_mm), unless multi_start sets its own thickness.
+  bool probe_thin_walls = true;
   ProgressFn progress;  // stages "coarse: fpfh", "coarse: starts", "coarse: refine"
 
   bool IsValid(std::string* error) const;

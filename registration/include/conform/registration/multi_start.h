@@ -44,6 +44,21 @@ struct MultiStartOptions {
   bool probe_reference_symmetry = true;
   double symmetry_similarity = 0.1;
 
+  // With inlier scoring: the reference's thin walls up to this thick (thin_walls.h) are looked for, and the best
+  // distinct poses (at most wall_bases of them, after the symmetry probes) are also probed shifted through them: by
+  // -t, 0 or +t along each of the walls' normal directions, every combination but none. A scan of one side of a plate
+  // shifted by its thickness lies on the far face and fits almost as well; no start may land on the right pose, so it
+  // is probed for. 0: not probed (coarse_align sets it to the FPFH support when FPFH ran).
+  double wall_max_thickness_mm = 0.0;
+  std::size_t wall_bases = 3;
+  // The shifted starts (up to 26 a wall and base) are screened by a quick probe (wall_screen_iterations steps on
+  // wall_screen_points of the probe points) and the wall_probes best by inlier share probed as every start is. On
+  // 5 mm and 3 mm plates the same poses as probing every shifted start (docs/measurements/cad.md) at a tenth of the
+  // cost.
+  std::size_t wall_probes = 8;
+  std::size_t wall_screen_points = 500;
+  int wall_screen_iterations = 5;
+
   // With inlier scoring: the best's loose directions (its probe's predicted std above the probe's free tolerance, or
   // held) are tested for symmetry: the best pose moved along each, both ways, by free_step_share of the scan's
   // size (at least 3 inlier distances), keeps its fit (not told apart from the unmoved pose, as above). Those that
