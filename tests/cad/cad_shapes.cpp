@@ -136,6 +136,14 @@ TopoDS_Shape welded_bracket() {
   return part;
 }
 
+TopoDS_Shape thin_plates(double thickness) {
+  const double t = thickness;
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 120.0, 80.0, t).Shape();
+  part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, t), 120.0, t, 70.0 - t).Shape()).Shape();
+  part = BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeBox(gp_Pnt(25, t, t), t, 60.0 - t, 50.0 - t).Shape()).Shape();
+  return BRepAlgoAPI_Fuse(part, BRepPrimAPI_MakeBox(gp_Pnt(80, t, t), t, 40.0 - t, 30.0 - t).Shape()).Shape();
+}
+
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
 
 TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm) {

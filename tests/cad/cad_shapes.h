@@ -33,6 +33,9 @@ TopoDS_Shape ribbed_plate();
 // two gussets 8 mm thick at x = 20 and x = 92 (right triangles of 50 mm legs in the corner between the plates), a
 // fillet weld with 6 mm legs along the inside corner, and two 12 mm holes through the base at (30, 55) and (90, 55).
 TopoDS_Shape welded_bracket();
+// A part of thin plates, all `thickness` mm: a base 120 x 80 (z up), an upright 70 mm tall along y = 0..t, and two ribs
+// at x = 25 and x = 80 reaching y = 60 and 40, z = 50 and 30 (tests/registration/plates_part.h as CAD).
+TopoDS_Shape thin_plates(double thickness);
 // Radius 15 mm, height 40 mm, axis z from the origin.
 TopoDS_Shape cylinder();
 // Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
