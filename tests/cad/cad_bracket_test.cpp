@@ -63,6 +63,40 @@ Scan scan_from_one_side(const TopoDS_Shape& part, const Eigen::Isometry3d& T_par
   return scan;
 }
 
+// `align --init fpfh --json` of the scan (written to scan.ply in `dir`) against `reference`, and its pose's error: the
+// turn, and the displacement of the part's `centre`.
+struct AlignRun {
+  int exit_code = 0;
+  std::string trust, start;
+  double rotation_deg = 0.0;
+  double translation_mm = 0.0;
+};
+
+AlignRun align_scan(const test::TempDir& dir, const Scan& scan, const std::string& reference,
+                    const Eigen::Isometry3d& T_part_scan, const Eigen::Vector3d& centre) {
+  Mesh cloud;
+  cloud.vertices = scan.points;
+  WriteOptions write;
+  write.double_precision = true;
+  write_mesh(dir.file("scan.ply"), cloud, write);
+  const test::RunResult r = test::run(
+      CONFORM_EXE, {"align", "--scan", dir.file("scan.ply"), "--reference", reference, "--init", "fpfh", "--json"});
+  AlignRun out;
+  out.exit_code = r.exit_code;
+  if (r.exit_code == 2) {
+    ADD_FAILURE() << reference << ": " << r.err;
+    return out;
+  }
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const Eigen::Isometry3d error = T_part_scan.inverse() * transform_of(j);
+  out.rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
+  const Eigen::Vector3d at = T_part_scan.inverse() * centre;
+  out.translation_mm = (error * at - at).norm();
+  out.trust = j["trust"].get<std::string>();
+  out.start = j["start"].get<std::string>();
+  return out;
+}
+
 TEST(CadBracket, ScannedFromOneSideCoarseAlignsAgainstStepAndCadLikeStl) {
   test::TempDir dir;
   const TopoDS_Shape bracket = test::welded_bracket();
@@ -79,27 +113,15 @@ TEST(CadBracket, ScannedFromOneSideCoarseAlignsAgainstStepAndCadLikeStl) {
   for (int trial = 0; trial < 6; ++trial) {
     const Eigen::Isometry3d T_part_scan = random_motion(random, 180.0, 100.0);
     const Scan scan = scan_from_one_side(bracket, T_part_scan, static_cast<std::uint64_t>(trial + 1));
-    Mesh cloud;
-    cloud.vertices = scan.points;
-    WriteOptions write;
-    write.double_precision = true;
-    write_mesh(dir.file("scan.ply"), cloud, write);
     for (const char* reference : {"bracket.step", "bracket.stl"}) {
-      const test::RunResult r = test::run(CONFORM_EXE, {"align", "--scan", dir.file("scan.ply"), "--reference",
-                                                        dir.file(reference), "--init", "fpfh", "--json"});
-      ASSERT_NE(r.exit_code, 2) << reference << r.err;
-      const nlohmann::json j = nlohmann::json::parse(r.out);
-      const Eigen::Isometry3d error = T_part_scan.inverse() * transform_of(j);
-      const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
-      const Eigen::Vector3d at = T_part_scan.inverse() * centre;
-      const double translation_mm = (error * at - at).norm();
-      const bool ok = rotation_deg < 0.01 && translation_mm < 0.01;
+      const AlignRun r = align_scan(dir, scan, dir.file(reference), T_part_scan, centre);
+      const bool ok = r.rotation_deg < 0.01 && r.translation_mm < 0.01;
       ++runs;
       right += ok && r.exit_code == 0;
       wrong_accepted += !ok && r.exit_code == 0;
       std::printf("trial %d (%.0f deg), %.0f %% scanned, %s: %.5f deg, %.5f mm, exit %d, trust %s\n", trial,
                   Eigen::AngleAxisd(T_part_scan.rotation()).angle() * 180.0 / M_PI, 100.0 * scan.share, reference,
-                  rotation_deg, translation_mm, r.exit_code, j["trust"].get<std::string>().c_str());
+                  r.rotation_deg, r.translation_mm, r.exit_code, r.trust.c_str());
     }
   }
   std::printf("%d runs: %d right and accepted, %d wrong and accepted\n", runs, right, wrong_accepted);
@@ -130,26 +152,13 @@ TEST(CadBracket, ThinPlatesScannedFromOneSideAreNotTakenAWallOff) {
     for (int trial = 0; trial < 3; ++trial) {
       const Eigen::Isometry3d T_part_scan = random_motion(random, 180.0, 100.0);
       const Scan scan = scan_from_one_side(part, T_part_scan, static_cast<std::uint64_t>(trial + 1));
-      Mesh cloud;
-      cloud.vertices = scan.points;
-      WriteOptions write;
-      write.double_precision = true;
-      write_mesh(dir.file("scan.ply"), cloud, write);
-      const test::RunResult r = test::run(CONFORM_EXE, {"align", "--scan", dir.file("scan.ply"), "--reference",
-                                                        dir.file("plates.step"), "--init", "fpfh", "--json"});
-      ASSERT_NE(r.exit_code, 2) << r.err;
-      const nlohmann::json j = nlohmann::json::parse(r.out);
-      const Eigen::Isometry3d error = T_part_scan.inverse() * transform_of(j);
-      const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
-      const Eigen::Vector3d at = T_part_scan.inverse() * centre;
-      const double translation_mm = (error * at - at).norm();
-      const bool ok = rotation_deg < 0.01 && translation_mm < 0.05;
+      const AlignRun r = align_scan(dir, scan, dir.file("plates.step"), T_part_scan, centre);
+      const bool ok = r.rotation_deg < 0.01 && r.translation_mm < 0.05;
       ++runs;
       right += ok && r.exit_code == 0;
       wrong_accepted += !ok && r.exit_code == 0;
       std::printf("%.0f mm plates, trial %d: %.5f deg, %.5f mm, exit %d, trust %s, start %s\n", thickness, trial,
-                  rotation_deg, translation_mm, r.exit_code, j["trust"].get<std::string>().c_str(),
-                  j["start"].get<std::string>().c_str());
+                  r.rotation_deg, r.translation_mm, r.exit_code, r.trust.c_str(), r.start.c_str());
     }
   }
   EXPECT_EQ(wrong_accepted, 0);
