@@ -395,7 +395,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
         if (bases.size() == options.wall_bases) break;
       }
       std::vector<CoarseStart> shifted = wall_starts(bases, walls);
-      if (options.wall_probes < shifted.size()) {
+      {
         // Screened by a quick probe on fewer points: where a shifted start's ICP lands decides, not the start itself
         // (a scan a wall off is often turned a few degrees as well, and the start's own share is near 0).
         const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
@@ -422,11 +422,20 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
         std::iota(order_shifted.begin(), order_shifted.end(), std::size_t{0});
         std::stable_sort(order_shifted.begin(), order_shifted.end(),
                          [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
+        // Only those that might beat or rival the best: within the ambiguity margin of the best's share on the same
+        // points (a right pose already found leaves none to probe).
+        const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
+        const double best_share =
+            share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
         std::vector<CoarseStart> kept;
-        for (std::size_t k = 0; k < options.wall_probes; ++k) kept.push_back(shifted[order_shifted[k]]);
+        for (std::size_t k = 0; k < std::min(options.wall_probes, shifted.size()); ++k) {
+          if (share[order_shifted[k]] >= (1.0 - options.share_margin) * best_share) {
+            kept.push_back(shifted[order_shifted[k]]);
+          }
+        }
         shifted = std::move(kept);
       }
-      probe_all(shifted, options.probe.max_iterations);
+      if (!shifted.empty()) probe_all(shifted, options.probe.max_iterations);
     }
   }
   const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
