@@ -113,6 +113,26 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
   return out;
 }
 
+// f(i) for every i < n, one i a thread. An exception must not leave a parallel region: the first in index order is
+// rethrown after the loop.
+template <typename F>
+void for_each_in_parallel(std::size_t n, const F& f) {
+  std::vector<std::exception_ptr> failed(n);
+  const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    try {
+      f(i);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
 // Each base pose shifted through each thin wall: by -t, 0 or +t along each of the wall's normal directions (reference
 // frame), every combination but no shift, labelled "... shifted through a 5.0 mm wall (+1, 0, -1)".
 std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, const std::vector<ThinWall>& walls) {
@@ -138,6 +158,31 @@ std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, cons
     }
   }
   return out;
+}
+
+// The shifted starts worth a full probe, best first: each screened by a quick probe (wall_screen_iterations steps on
+// `few` points; where its ICP lands decides, not the start itself: a scan a wall off is often turned a few degrees as
+// well, and the start's own share is near 0), the wall_probes best by inlier share within share_margin of
+// `best_share` (the best pose's on the same points): none when the right pose was already found.
+std::vector<CoarseStart> screened_wall_starts(const std::vector<CoarseStart>& shifted,
+                                              const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
+                                              const MultiStartOptions& options, double reach, double best_share) {
+  std::vector<double> share(shifted.size(), -1.0);
+  for_each_in_parallel(shifted.size(), [&](std::size_t i) {
+    IcpOptions quick = options.probe;
+    quick.progress = nullptr;
+    quick.max_iterations = options.wall_screen_iterations;
+    const IcpResult r = icp(few, reference, shifted[i].T_ref_scan, quick);
+    share[i] = share_of(inliers(few, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
+  });
+  std::vector<std::size_t> order(shifted.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
+  std::vector<CoarseStart> kept;
+  for (std::size_t k = 0; k < std::min(options.wall_probes, shifted.size()); ++k) {
+    if (share[order[k]] >= (1.0 - options.share_margin) * best_share) kept.push_back(shifted[order[k]]);
+  }
+  return kept;
 }
 
 // The finite screw motion of a scaled twist x = (w L, v) about c: rotation |w| about the axis through
@@ -321,8 +366,8 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
     return out;
   };
-  const auto probe_start = [&](const CoarseStart& start, int iterations) {
-    return run_probe(start, start.T_ref_scan, iterations);
+  const auto probe_start = [&](const CoarseStart& start) {
+    return run_probe(start, start.T_ref_scan, options.probe.max_iterations);
   };
   // Start i's probe run on to convergence from where it ended (MultiStartOptions::settle_iterations).
   const auto settled = [&](std::size_t i) {
@@ -331,22 +376,9 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   };
   // The probes are independent and each too small to share out (icp() runs a few thousand points on one thread):
   // one start a thread, merged in the order given, so the result is the same for any number of threads.
-  const auto probe_all = [&](const std::vector<CoarseStart>& batch, int iterations) {
+  const auto probe_all = [&](const std::vector<CoarseStart>& batch) {
     std::vector<Probe> probes(batch.size());
-    std::vector<std::exception_ptr> failed(batch.size());  // an exception must not leave a parallel region
-    const auto n = static_cast<std::ptrdiff_t>(batch.size());
-#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-      const auto i = static_cast<std::size_t>(k);
-      try {
-        probes[i] = probe_start(batch[i], iterations);
-      } catch (...) {
-        failed[i] = std::current_exception();
-      }
-    }
-    for (const std::exception_ptr& e : failed) {
-      if (e) std::rethrow_exception(e);
-    }
+    for_each_in_parallel(batch.size(), [&](std::size_t i) { probes[i] = probe_start(batch[i]); });
     for (Probe& p : probes) {
       result.starts.push_back(p.report);
       masks.push_back(std::move(p.mask));
@@ -356,13 +388,13 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       }
     }
   };
-  probe_all(starts, options.probe.max_iterations);
+  probe_all(starts);
   if (options.probe_reference_symmetry) {
     // The best pose turned by the reference's own candidate symmetries: if the reference (or the part of it the scan
     // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
     // not any start happened to land there (a partial scan of a symmetric plate: every FPFH run may agree).
     const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
-    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity), options.probe.max_iterations);
+    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
   }
   const Eigen::Vector3d centre =
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
@@ -394,48 +426,13 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
         if (!seen) bases.push_back(s);
         if (bases.size() == options.wall_bases) break;
       }
-      std::vector<CoarseStart> shifted = wall_starts(bases, walls);
-      {
-        // Screened by a quick probe on fewer points: where a shifted start's ICP lands decides, not the start itself
-        // (a scan a wall off is often turned a few degrees as well, and the start's own share is near 0).
-        const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
-        std::vector<double> share(shifted.size(), -1.0);
-        std::vector<std::exception_ptr> failed(shifted.size());
-        const auto n = static_cast<std::ptrdiff_t>(shifted.size());
-#pragma omp parallel for schedule(dynamic, 1)
-        for (std::ptrdiff_t k = 0; k < n; ++k) {
-          const auto i = static_cast<std::size_t>(k);
-          try {
-            IcpOptions quick = options.probe;
-            quick.progress = nullptr;
-            quick.max_iterations = options.wall_screen_iterations;
-            const IcpResult r = icp(few, reference, shifted[i].T_ref_scan, quick);
-            share[i] = share_of(inliers(few, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
-          } catch (...) {
-            failed[i] = std::current_exception();
-          }
-        }
-        for (const std::exception_ptr& e : failed) {
-          if (e) std::rethrow_exception(e);
-        }
-        std::vector<std::size_t> order_shifted(shifted.size());
-        std::iota(order_shifted.begin(), order_shifted.end(), std::size_t{0});
-        std::stable_sort(order_shifted.begin(), order_shifted.end(),
-                         [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
-        // Only those that might beat or rival the best: within the ambiguity margin of the best's share on the same
-        // points (a right pose already found leaves none to probe).
-        const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
-        const double best_share =
-            share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
-        std::vector<CoarseStart> kept;
-        for (std::size_t k = 0; k < std::min(options.wall_probes, shifted.size()); ++k) {
-          if (share[order_shifted[k]] >= (1.0 - options.share_margin) * best_share) {
-            kept.push_back(shifted[order_shifted[k]]);
-          }
-        }
-        shifted = std::move(kept);
-      }
-      if (!shifted.empty()) probe_all(shifted, options.probe.max_iterations);
+      const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
+      const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
+      const double best_share =
+          share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
+      const std::vector<CoarseStart> kept =
+          screened_wall_starts(wall_starts(bases, walls), few, reference, options, reach, best_share);
+      if (!kept.empty()) probe_all(kept);
     }
   }
   const StartReport best = result.starts[static_cast<std::size_t>(result.best)];

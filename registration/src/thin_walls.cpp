@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <Eigen/Eigenvalues>
 
@@ -87,7 +86,9 @@ std::vector<ThinWall> thin_walls(const IcpReference& reference, const ThinWallOp
     }
     if (best > 0.0) found.push_back({best, normal});
   }
-  std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.thickness < b.thickness; });
+  // Stable: the same input gives the same groups in the same order, so the same directions to the last bit.
+  std::stable_sort(found.begin(), found.end(),
+                   [](const Found& a, const Found& b) { return a.thickness < b.thickness; });
   for (std::size_t first = 0; first < found.size();) {
     std::size_t last = first + 1;
     while (last < found.size() && found[last].thickness - found[last - 1].thickness <= kGroupSpacings * spacing) {

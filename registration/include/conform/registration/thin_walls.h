@@ -5,7 +5,6 @@
 // 3.3 deg and 5.7 mm off; docs/measurements/cad.md). The coarse stage probes those shifts (multi_start.h).
 
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
