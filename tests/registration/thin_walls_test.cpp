@@ -109,5 +109,43 @@ TEST(ThinWalls, AOneSideScanShiftedThroughAWallIsProbedBack) {
   EXPECT_LT(right_without, frames);
 }
 
+// On 3 mm plates a pose shifted by the walls' diagonal fits almost as well as the right one, and the points that tell
+// them apart are the plates' edges: at the right pose 175 of 3000 inlying there only against 50 at the shifted one
+// (docs/measurements/cad.md), 8 standard deviations of a fair coin but 3.5 times as many. The chance test asks 3 times
+// as many (MultiStartOptions::separation_ratio): told apart, not ambiguous; at 4, ambiguous (refused).
+TEST(ThinWalls, ThreeMillimetrePlatesAreToldApartFromTheDiagonalShift) {
+  Random random(12);
+  const std::vector<Eigen::Vector3d> reference_points =
+      test::plates_surface(3.0, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
+  const IcpReference reference = cloud_reference(reference_points);
+  const Eigen::Vector3d towards_scanner(0.3, 0.7, 0.65);
+  const Eigen::Vector3d centre(60, 30, 30);
+  const int frames = 4;
+  int told_apart = 0, at_ratio_4 = 0;
+  for (int frame = 0; frame < frames; ++frame) {
+    const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 100.0, centre);
+    const std::vector<Eigen::Vector3d> scan =
+        test::transformed_points(test::plates_surface(3.0, 1.0, 0.03, towards_scanner, random), truth.inverse());
+    for (const double ratio : {MultiStartOptions{}.separation_ratio, 4.0}) {
+      CoarseOptions coarse;
+      coarse.method = CoarseMethod::kFpfh;
+      coarse.fpfh.seed = static_cast<std::uint64_t>(frame + 1);
+      coarse.multi_start.probe.max_correspondence_distance_mm = 15.0;
+      coarse.multi_start.separation_ratio = ratio;
+      const CoarseResult c = coarse_align(scan, reference, coarse);
+      const double deg = test::rotation_error_deg(c.T_ref_scan, truth);
+      const Eigen::Vector3d at = truth.inverse() * centre;
+      const double mm = (c.T_ref_scan * at - truth * at).norm();
+      const bool right = deg < 0.05 && mm < 0.5;
+      std::printf("frame %d, ratio %.0f: %s, %.3f deg, %.3f mm off%s\n", frame, ratio, c.winner.c_str(), deg, mm,
+                  c.ranking.ambiguous ? ", ambiguous" : "");
+      EXPECT_TRUE(right || c.ranking.ambiguous) << "frame " << frame << ": a wrong pose not called ambiguous";
+      (ratio == 4.0 ? at_ratio_4 : told_apart) += right && !c.ranking.ambiguous;
+    }
+  }
+  std::printf("right and told apart: %d of %d (at ratio 4: %d)\n", told_apart, frames, at_ratio_4);
+  EXPECT_GT(told_apart, at_ratio_4);
+}
+
 }  // namespace
 }  // namespace conform

@@ -34,7 +34,7 @@ struct MultiStartOptions {
   // (sqrt of their sum). At two poses of a symmetric surface those points are threshold noise, as many either way;
   // a small feature that only one pose fits (a boss) is one-sided. separation_z 0: never told apart.
   double separation_z = 4.0;
-  double separation_ratio = 4.0;
+  double separation_ratio = 3.0;
   double separation_min_share = 0.005;
 
   // The best start is also probed turned by the reference's candidate symmetries (half turns about its principal
