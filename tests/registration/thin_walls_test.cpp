@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -74,35 +75,63 @@ TEST(ThinWalls, NoneOnASolidBlockOrASingleSheet) {
   EXPECT_THROW(thin_walls(cloud_reference(sheet), options), Error);
 }
 
+// The plates part of `thickness` mm as a noise-free cloud (1 point per mm^2) and `frames` one-side scans of it (0.03 mm
+// noise, seen from one direction) in random frames (up to 180 deg and 100 mm about the part's centre), with their
+// truths T_ref_scan, drawn from one stream seeded `seed`.
+struct OneSideFrames {
+  std::vector<Eigen::Vector3d> reference;
+  std::vector<Eigen::Isometry3d> truths;
+  std::vector<std::vector<Eigen::Vector3d>> scans;
+};
+
+const Eigen::Vector3d kPartCentre(60, 30, 30);
+
+OneSideFrames one_side_frames(double thickness, std::uint64_t seed, int frames) {
+  Random random(seed);
+  OneSideFrames out;
+  out.reference = test::plates_surface(thickness, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
+  for (int frame = 0; frame < frames; ++frame) {
+    out.truths.push_back(test::random_motion(random, M_PI, 100.0, kPartCentre));
+    out.scans.push_back(test::transformed_points(
+        test::plates_surface(thickness, 1.0, 0.03, Eigen::Vector3d(0.3, 0.7, 0.65), random),
+        out.truths.back().inverse()));
+  }
+  return out;
+}
+
+// Coarse alignment of frame `frame` with FPFH seeded by it; whether it is within 0.05 deg and 0.5 mm at the part's
+// centre (printed with `what`).
+CoarseResult coarse_frame(const OneSideFrames& f, const IcpReference& reference, int frame, CoarseOptions coarse,
+                          const std::string& what, bool* right) {
+  coarse.method = CoarseMethod::kFpfh;
+  coarse.fpfh.seed = static_cast<std::uint64_t>(frame + 1);
+  coarse.multi_start.probe.max_correspondence_distance_mm = 15.0;
+  const std::size_t k = static_cast<std::size_t>(frame);
+  const CoarseResult c = coarse_align(f.scans[k], reference, coarse);
+  const double deg = test::rotation_error_deg(c.T_ref_scan, f.truths[k]);
+  const Eigen::Vector3d at = f.truths[k].inverse() * kPartCentre;
+  const double mm = (c.T_ref_scan * at - f.truths[k] * at).norm();
+  *right = deg < 0.05 && mm < 0.5;
+  std::printf("frame %d, %s: %s, %.3f deg, %.3f mm off%s\n", frame, what.c_str(), c.winner.c_str(), deg, mm,
+              c.ranking.ambiguous ? ", ambiguous" : "");
+  return c;
+}
+
 // One-side scans of 5 mm plates in random frames against the cloud of the whole part: with the wall probes the coarse
 // pose is right and unambiguous on every frame; without them most land a wall off.
 TEST(ThinWalls, AOneSideScanShiftedThroughAWallIsProbedBack) {
-  Random random(11);
-  const std::vector<Eigen::Vector3d> reference_points =
-      test::plates_surface(5.0, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
-  const IcpReference reference = cloud_reference(reference_points);
-  const Eigen::Vector3d towards_scanner(0.3, 0.7, 0.65);
-  const Eigen::Vector3d centre(60, 30, 30);
   const int frames = 4;
+  const OneSideFrames f = one_side_frames(5.0, 11, frames);
+  const IcpReference reference = cloud_reference(f.reference);
   int right_with = 0, right_without = 0;
   for (int frame = 0; frame < frames; ++frame) {
-    const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 100.0, centre);
-    const std::vector<Eigen::Vector3d> scan =
-        test::transformed_points(test::plates_surface(5.0, 1.0, 0.03, towards_scanner, random), truth.inverse());
     for (const bool probe : {true, false}) {
       CoarseOptions coarse;
-      coarse.method = CoarseMethod::kFpfh;
-      coarse.fpfh.seed = static_cast<std::uint64_t>(frame + 1);
-      coarse.multi_start.probe.max_correspondence_distance_mm = 15.0;
       coarse.probe_thin_walls = probe;
-      const CoarseResult c = coarse_align(scan, reference, coarse);
-      const double deg = test::rotation_error_deg(c.T_ref_scan, truth);
-      const Eigen::Vector3d at = truth.inverse() * centre;
-      const double mm = (c.T_ref_scan * at - truth * at).norm();
-      const bool right = deg < 0.05 && mm < 0.5 && !c.ranking.ambiguous;
-      std::printf("frame %d, wall probes %s: %s, %.3f deg, %.3f mm off%s\n", frame, probe ? "on" : "off",
-                  c.winner.c_str(), deg, mm, c.ranking.ambiguous ? ", ambiguous" : "");
-      (probe ? right_with : right_without) += right;
+      bool right = false;
+      const CoarseResult c =
+          coarse_frame(f, reference, frame, coarse, std::string("wall probes ") + (probe ? "on" : "off"), &right);
+      (probe ? right_with : right_without) += right && !c.ranking.ambiguous;
     }
   }
   EXPECT_EQ(right_with, frames);
@@ -114,31 +143,16 @@ TEST(ThinWalls, AOneSideScanShiftedThroughAWallIsProbedBack) {
 // (docs/measurements/cad.md), 8 standard deviations of a fair coin but 3.5 times as many. The chance test asks 3 times
 // as many (MultiStartOptions::separation_ratio): told apart, not ambiguous; at 4, ambiguous (refused).
 TEST(ThinWalls, ThreeMillimetrePlatesAreToldApartFromTheDiagonalShift) {
-  Random random(12);
-  const std::vector<Eigen::Vector3d> reference_points =
-      test::plates_surface(3.0, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
-  const IcpReference reference = cloud_reference(reference_points);
-  const Eigen::Vector3d towards_scanner(0.3, 0.7, 0.65);
-  const Eigen::Vector3d centre(60, 30, 30);
   const int frames = 4;
+  const OneSideFrames f = one_side_frames(3.0, 12, frames);
+  const IcpReference reference = cloud_reference(f.reference);
   int told_apart = 0, at_ratio_4 = 0;
   for (int frame = 0; frame < frames; ++frame) {
-    const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 100.0, centre);
-    const std::vector<Eigen::Vector3d> scan =
-        test::transformed_points(test::plates_surface(3.0, 1.0, 0.03, towards_scanner, random), truth.inverse());
     for (const double ratio : {MultiStartOptions{}.separation_ratio, 4.0}) {
       CoarseOptions coarse;
-      coarse.method = CoarseMethod::kFpfh;
-      coarse.fpfh.seed = static_cast<std::uint64_t>(frame + 1);
-      coarse.multi_start.probe.max_correspondence_distance_mm = 15.0;
       coarse.multi_start.separation_ratio = ratio;
-      const CoarseResult c = coarse_align(scan, reference, coarse);
-      const double deg = test::rotation_error_deg(c.T_ref_scan, truth);
-      const Eigen::Vector3d at = truth.inverse() * centre;
-      const double mm = (c.T_ref_scan * at - truth * at).norm();
-      const bool right = deg < 0.05 && mm < 0.5;
-      std::printf("frame %d, ratio %.0f: %s, %.3f deg, %.3f mm off%s\n", frame, ratio, c.winner.c_str(), deg, mm,
-                  c.ranking.ambiguous ? ", ambiguous" : "");
+      bool right = false;
+      const CoarseResult c = coarse_frame(f, reference, frame, coarse, "ratio " + std::to_string(static_cast<int>(ratio)), &right);
       EXPECT_TRUE(right || c.ranking.ambiguous) << "frame " << frame << ": a wrong pose not called ambiguous";
       (ratio == 4.0 ? at_ratio_4 : told_apart) += right && !c.ranking.ambiguous;
     }
