@@ -54,6 +54,27 @@ TEST(ThinWalls, FindThePlatesThicknessAndTheirNormals) {
   }
 }
 
+// In shop coordinates (the part 15 m from the origin, where a float's step is 1 um) the walls are found as at the
+// origin: the search's steps skipped by the nearest distance keep a margin over the tree's float rounding.
+TEST(ThinWalls, TheSameWallsInShopCoordinates) {
+  Random random(3);
+  std::vector<Eigen::Vector3d> points = test::plates_surface(5.0, 1.0, 0.0, Eigen::Vector3d::Zero(), random);
+  ThinWallOptions options;
+  options.max_thickness_mm = 19.0;
+  const std::vector<ThinWall> here = thin_walls(cloud_reference(points), options);
+  const Eigen::Vector3d shop(8000.0, -5000.0, 12000.0);
+  for (Eigen::Vector3d& p : points) p += shop;
+  const std::vector<ThinWall> there = thin_walls(cloud_reference(points), options);
+  ASSERT_EQ(here.size(), 1u);
+  ASSERT_EQ(there.size(), 1u);
+  EXPECT_NEAR(there[0].thickness_mm, here[0].thickness_mm, 0.01);
+  EXPECT_NEAR(there[0].share, here[0].share, 0.01);
+  ASSERT_EQ(there[0].directions.size(), here[0].directions.size());
+  for (std::size_t k = 0; k < here[0].directions.size(); ++k) {
+    EXPECT_GT(std::abs(there[0].directions[k].dot(here[0].directions[k])), 0.9999);
+  }
+}
+
 TEST(ThinWalls, NoneOnASolidBlockOrASingleSheet) {
   Random random(4);
   ThinWallOptions options;
