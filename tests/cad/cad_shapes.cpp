@@ -146,6 +146,18 @@ TopoDS_Shape thin_plates(double thickness) {
 
 TopoDS_Shape cylinder() { return BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), 15.0, 40.0).Shape(); }
 
+TopoDS_Shape filleted_cylinder() {
+  const TopoDS_Shape c = cylinder();
+  BRepFilletAPI_MakeFillet fillet(c);
+  // The top edge: the circle at z = 40 (the seam runs along z).
+  for (TopExp_Explorer e(c, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    const gp_Pnt a = BRep_Tool::Pnt(TopExp::FirstVertex(edge)), b = BRep_Tool::Pnt(TopExp::LastVertex(edge));
+    if (std::abs(a.Z() - 40.0) < 1e-9 && std::abs(b.Z() - 40.0) < 1e-9) fillet.Add(3.0, edge);
+  }
+  return fillet.Shape();
+}
+
 TopoDS_Shape cylinder(double radius_mm, double z0_mm, double z1_mm) {
   return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, z0_mm), gp::DZ()), radius_mm, z1_mm - z0_mm).Shape();
 }

@@ -38,6 +38,9 @@ TopoDS_Shape welded_bracket();
 TopoDS_Shape thin_plates(double thickness);
 // Radius 15 mm, height 40 mm, axis z from the origin.
 TopoDS_Shape cylinder();
+// The same cylinder with its top edge rounded by an R3 fillet: a cylinder face meeting a torus without a crease, the
+// side tessellated as strips the cylinder's whole height.
+TopoDS_Shape filleted_cylinder();
 // Major radius 10 mm, minor 3 mm, about z (small: a torus face is the slowest to tessellate).
 TopoDS_Shape torus();
 // A solid cylinder of radius r along z from z0 to z1.
