@@ -43,7 +43,7 @@ double far_face(const IcpReference& reference, const Eigen::Vector3d& p, const E
       const double t = (q - p).dot(normal);
       return t <= reach ? t : 0.0;
     }
-    // A step within the rounding of the tree's floats of the bound is queried.
+    // 0.999: a step that lies at the bound to within the tree's float rounding is still queried.
     skip_to = d + 0.999 * (r - kFarReach * spacing);
   }
   return 0.0;

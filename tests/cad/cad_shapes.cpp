@@ -41,6 +41,9 @@
 #include <gp_Pnt2d.hxx>
 #include <gp_Vec.hxx>
 
+#include "conform/core/io.h"
+#include "conform/core/mesh.h"
+
 namespace conform::test {
 
 TopoDS_Shape box_with_boss_and_hole() {
@@ -192,6 +195,14 @@ TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,
 }
 
 TopoDS_Shape torus() { return BRepPrimAPI_MakeTorus(gp_Ax2(gp::Origin(), gp::DZ()), 10.0, 3.0).Shape(); }
+
+void write_scan(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
+  Mesh cloud;
+  cloud.vertices = points;
+  WriteOptions precise;
+  precise.double_precision = true;
+  write_mesh(path, cloud, precise);
+}
 
 void write_cad(const TopoDS_Shape& shape, const std::string& path, CadFormat format, const std::string& unit) {
   Message::DefaultMessenger()->ChangePrinters().Clear();

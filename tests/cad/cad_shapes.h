@@ -55,6 +55,9 @@ TopoDS_Shape drill_split_hole(const TopoDS_Shape& part, double x_mm, double y_mm
 TopoDS_Shape faces_of_triangles(const std::vector<Eigen::Vector3d>& vertices,
                                 const std::vector<std::array<std::int32_t, 3>>& triangles);
 
+// The points as a cloud .ply in double precision (the scan's coordinates to the last bit).
+void write_scan(const std::string& path, const std::vector<Eigen::Vector3d>& points);
+
 enum class CadFormat { kStep, kIges };
 // unit: "MM" or "M" (the file's coordinates are then in metres).
 void write_cad(const TopoDS_Shape& shape, const std::string& path, CadFormat format, const std::string& unit);

@@ -130,11 +130,7 @@ TEST(CadSurface, CompareMeasuresToTheExactFaces) {
   const TopoDS_Shape block = test::filleted_block();
   test::write_cad(block, dir.file("block.step"), CadFormat::kStep, "MM");
   const test::SurfaceSample exact = test::sample_surface(block, 20000, 0.0, 11);
-  Mesh scan;
-  scan.vertices = exact.points;
-  WriteOptions write;
-  write.double_precision = true;
-  write_mesh(dir.file("scan.ply"), scan, write);
+  test::write_scan(dir.file("scan.ply"), exact.points);
   double worst[2] = {0.0, 0.0};
   for (const bool flat : {false, true}) {
     std::vector<std::string> args = {"compare", "--scan", dir.file("scan.ply"), "--reference", dir.file("block.step"),
@@ -156,19 +152,15 @@ TEST(CadSurface, CompareMeasuresToTheExactFaces) {
 }
 
 // A cylinder whose top edge is rounded (R3): its side, tessellated as strips 37 mm long, meets the fillet without a
-// crease. Exact points on it read 0 (within 0.001 mm) at the defaults: the smooth surface over those strips bulged by up to 0.09 mm
-// (the shared rim's normals tilted by the fillet's first chord) and, differing from the exact face by more than the
-// bound, kept its own figure: a perfect part read out of a 0.05 mm tolerance (67 % below).
+// crease. Exact points on it read 0 (within 0.001 mm) at the defaults: the smooth surface over those strips bulged
+// by up to 0.09 mm (the shared rim's normals tilted by the fillet's first chord) and, differing from the exact face by
+// more than the bound, kept its own figure: a perfect part read out of a 0.05 mm tolerance (67 % below).
 TEST(CadSurface, ACylinderMeetingAFilletReadsZeroAtTheDefaults) {
   test::TempDir dir;
   const TopoDS_Shape part = test::filleted_cylinder();
   test::write_cad(part, dir.file("part.step"), CadFormat::kStep, "MM");
   const test::SurfaceSample exact = test::sample_surface(part, 5000, 0.0, 7);
-  Mesh scan;
-  scan.vertices = exact.points;
-  WriteOptions write;
-  write.double_precision = true;
-  write_mesh(dir.file("scan.ply"), scan, write);
+  test::write_scan(dir.file("scan.ply"), exact.points);
   const test::RunResult r = test::run(CONFORM_EXE, {"compare", "--scan", dir.file("scan.ply"), "--reference",
                                                     dir.file("part.step"), "--tolerance", "0.05", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

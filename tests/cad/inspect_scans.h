@@ -40,15 +40,6 @@ inline double mean_of(const std::vector<double>& v) {
   return sum / static_cast<double>(v.size());
 }
 
-// The points as a cloud .ply in double precision (the scan's coordinates to the last bit).
-inline void write_scan(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
-  Mesh cloud;
-  cloud.vertices = points;
-  WriteOptions precise;
-  precise.double_precision = true;
-  write_mesh(path, cloud, precise);
-}
-
 // The shape written as STEP in mm at `path`, and its faces as inspect reads them.
 inline CadFaces write_step(const TopoDS_Shape& shape, const std::string& path) {
   write_cad(shape, path, CadFormat::kStep, "MM");

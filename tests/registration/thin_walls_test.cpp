@@ -173,7 +173,8 @@ TEST(ThinWalls, ThreeMillimetrePlatesAreToldApartFromTheDiagonalShift) {
       CoarseOptions coarse;
       coarse.multi_start.separation_ratio = ratio;
       bool right = false;
-      const CoarseResult c = coarse_frame(f, reference, frame, coarse, "ratio " + std::to_string(static_cast<int>(ratio)), &right);
+      const std::string what = "ratio " + std::to_string(static_cast<int>(ratio));
+      const CoarseResult c = coarse_frame(f, reference, frame, coarse, what, &right);
       EXPECT_TRUE(right || c.ranking.ambiguous) << "frame " << frame << ": a wrong pose not called ambiguous";
       (ratio == 4.0 ? at_ratio_4 : told_apart) += right && !c.ranking.ambiguous;
     }
