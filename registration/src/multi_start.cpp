@@ -85,29 +85,39 @@ double size_of(const std::vector<Eigen::Vector3d>& points) {
 
 // The best pose followed by a turn of the reference about its principal axes through its centroid: half turns about
 // each axis, and about an axis whose two companions spread alike (within `similarity`: a near-axisymmetric part, a
-// flange, a hub) every kAxialTurnDeg: an n-fold part (n bolt holes) has its other indices n-fold apart, and a turn
-// within half of that of each reaches it (n <= 12).
+// flange, a square plate) every kAxialTurnDeg, and half turns about the axes between those companions every
+// kAxialTurnDeg. An n-fold part (n bolt holes) has its other indices n-fold apart, and a turn within half of that of
+// each reaches it (n <= 12); a square plate is also its own mirror across a diagonal, which only the half turn
+// about that diagonal (not a principal axis) maps onto itself.
 std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
                                          double similarity) {
   std::vector<CoarseStart> out;
   if (reference.size() < 3) return out;
   const PrincipalAxes axes = principal_axes(reference);
-  const auto add = [&](int k, double degrees) {
-    const Eigen::Vector3d a = axes.axes.col(k);
+  const auto add = [&](const Eigen::Vector3d& axis, double degrees, const std::string& about) {
     Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-    turn.linear() = Eigen::AngleAxisd(degrees * M_PI / 180.0, a).toRotationMatrix();
+    turn.linear() = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
     turn.translation() = axes.centroid - turn.linear() * axes.centroid;
-    out.push_back({best.label + " turned " + std::to_string(static_cast<int>(degrees)) + " deg about reference axis " +
-                       std::to_string(k + 1),
-                   turn * best.T_probe});
+    out.push_back(
+        {best.label + " turned " + std::to_string(static_cast<int>(degrees)) + " deg about " + about, turn * best.T_probe});
   };
+  const auto name = [](int k) { return std::to_string(k + 1); };
   for (int k = 0; k < 3; ++k) {
-    add(k, 180.0);
-    const double u = axes.variances((k + 1) % 3), v = axes.variances((k + 2) % 3);
-    if (std::abs(u - v) <= similarity * std::max(u, v)) {
-      for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
-        if (std::abs(degrees - 180.0) > 1.0) add(k, degrees > 180.0 ? degrees - 360.0 : degrees);
+    add(axes.axes.col(k), 180.0, "reference axis " + name(k));
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double u = axes.variances(i), v = axes.variances(j);
+    if (std::abs(u - v) > similarity * std::max(u, v)) continue;
+    for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
+      if (std::abs(degrees - 180.0) > 1.0) {
+        add(axes.axes.col(k), degrees > 180.0 ? degrees - 360.0 : degrees, "reference axis " + name(k));
       }
+    }
+    for (double degrees = kAxialTurnDeg; degrees < 179.0; degrees += kAxialTurnDeg) {
+      if (std::abs(degrees - 90.0) <= 1.0) continue;  // reference axis j, above
+      const double a = degrees * M_PI / 180.0;
+      add(std::cos(a) * axes.axes.col(i) + std::sin(a) * axes.axes.col(j), 180.0,
+          "the axis " + std::to_string(static_cast<int>(degrees)) + " deg from reference axis " + name(i) +
+              " towards " + name(j));
     }
   }
   return out;
@@ -483,7 +493,8 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       }
       if (!competes(j, best_settled->report, best_settled->mask, other.report, other.mask)) continue;
     }
-    const StartReport& other = result.starts[j];
+    StartReport& other = result.starts[j];
+    other.ties_best = true;
     if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
       result.ambiguous = true;
       result.runner_up = static_cast<int>(j);

@@ -113,6 +113,22 @@ TopoDS_Shape ribbed_plate() {
   return chamfer_edges_at(part, 80.0, 10.0, 3.0);
 }
 
+TopoDS_Shape square_plate(bool marked) {
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 100.0, 100.0, 10.0).Shape();
+  const auto drill = [&](double x, double y, double radius) {
+    part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, -5), gp::DZ()), radius, 20.0).Shape())
+               .Shape();
+  };
+  for (const double x : {15.0, 85.0}) {
+    for (const double y : {15.0, 85.0}) drill(x, y, 6.0);
+  }
+  BRepBuilderAPI_MakePolygon corner(gp_Pnt(89, 101, -5), gp_Pnt(101, 101, -5), gp_Pnt(101, 89, -5), Standard_True);
+  const TopoDS_Face triangle = BRepBuilderAPI_MakeFace(corner.Wire(), Standard_True).Face();
+  part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakePrism(triangle, gp_Vec(0, 0, 20)).Shape()).Shape();
+  if (marked) drill(50.0, 25.0, 10.0);
+  return part;
+}
+
 namespace {
 
 // The triangle (x, y0, z0), (x, y1, z1), (x, y2, z2) in the plane x = x0, extruded by `length_mm` along +x.

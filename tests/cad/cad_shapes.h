@@ -29,6 +29,11 @@ TopoDS_Shape flange();
 // A machined plate 120 x 80 x 10 mm: three ribs 6 x 70 x 8 mm on top at x = 10, 40, 70, a boss of R9 and 12 mm at
 // (100, 40), a pocket 22 x 14 mm, 6 mm deep, at (90..112, 8..22), and a 3 mm chamfer on the top edge along y = 80.
 TopoDS_Shape ribbed_plate();
+// A square plate 100 x 100 x 10 mm (z up) with four 12 mm holes at 15 mm from its corners and a 45-degree chamfer
+// cutting its vertical edge at (100, 100) back to x + y = 190: a half turn about its diagonal x = y (through the
+// plate's middle) maps it onto itself, its top onto its bottom. `marked`: one more hole, R10 at (50, 25), off the
+// diagonal, so that it is not symmetric.
+TopoDS_Shape square_plate(bool marked);
 // A welded bracket: a base plate 120 x 80 x 10 mm (z up), an upright plate 120 x 10 x 80 mm on it along y = 0..10,
 // two gussets 8 mm thick at x = 20 and x = 92 (right triangles of 50 mm legs in the corner between the plates), a
 // fillet weld with 6 mm legs along the inside corner, and two 12 mm holes through the base at (30, 55) and (90, 55).

@@ -121,6 +121,31 @@ IcpResult fine_fit(const std::vector<Eigen::Vector3d>& scan, const IcpReference&
   return at_common_overlap(scan, reference, direct, via).b_better() ? via : direct;
 }
 
+// Of a start the user gave (ranking.starts[0]) and its symmetric turns, the one fine ICP starts from: the user's own
+// unless a turned one fits better beyond doubt. When the best ties with others (a symmetric part: the data cannot
+// tell them apart), the user's own if it is one of them, else the tied one nearest to it: where the user placed the
+// scan decides (the verdict says so). -1: nothing ranked.
+int given_start_choice(const MultiStartResult& ranking) {
+  if (ranking.best < 0 || ranking.starts.empty()) return ranking.best;
+  const StartReport& given = ranking.starts.front();
+  if (ranking.best == 0 || given.ties_best) return 0;
+  if (!ranking.ambiguous) return ranking.best;
+  const auto turn_from_given = [&](std::size_t j) {
+    return rotation_angle(ranking.starts[j].T_probe * given.T_start.inverse());
+  };
+  int nearest = ranking.best;
+  double nearest_rad = turn_from_given(static_cast<std::size_t>(ranking.best));
+  for (std::size_t j = 1; j < ranking.starts.size(); ++j) {
+    if (!ranking.starts[j].ties_best) continue;
+    const double rad = turn_from_given(j);
+    if (rad < nearest_rad) {
+      nearest = static_cast<int>(j);
+      nearest_rad = rad;
+    }
+  }
+  return nearest;
+}
+
 // Where fine ICP starts: the identity, the user's pairs, or the best of the coarse starts.
 void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference& reference, const Mesh& reference_mesh,
                     const AlignOptions& options, double max_distance_mm, AlignResult& result) {
@@ -161,14 +186,13 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   if (spacing > 0.0) surface.emplace(detail::coarse_reference(reference_mesh, spacing));
   result.coarse = coarse_align(scan, surface ? *surface : reference, coarse);
   const MultiStartResult& ranking = result.coarse.ranking;
-  // The user's start is kept unless a turned one fits better beyond doubt: when the ranking is ambiguous the data
-  // cannot tell the turns apart (a symmetric part), and where the user placed the scan decides (the verdict says so).
-  const bool kept = given && (ranking.ambiguous || ranking.best < 0 ||
-                              ranking.starts[static_cast<std::size_t>(ranking.best)].label == "identity");
-  result.T_start = kept ? Eigen::Isometry3d::Identity() : result.coarse.T_ref_scan;
-  result.start = kept ? std::string("identity") : result.coarse.winner;
+  result.started_from = given ? given_start_choice(ranking) : ranking.best;
+  const bool kept = given && (result.started_from < 0 || result.started_from == 0);
+  const StartReport* from = kept ? nullptr : &ranking.starts[static_cast<std::size_t>(result.started_from)];
+  result.T_start = kept ? Eigen::Isometry3d::Identity() : given ? from->T_probe : result.coarse.T_ref_scan;
+  result.start = kept ? std::string("identity") : given ? from->label : result.coarse.winner;
   if (given && !kept) {
-    result.warnings.push_back("the start given fits worse than '" + result.coarse.winner +
+    result.warnings.push_back("the start given fits worse than '" + result.start +
                               "' (the reference is near-symmetric): fine ICP started there");
   }
   if (ranking.ambiguous) {

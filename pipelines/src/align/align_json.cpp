@@ -82,6 +82,7 @@ nlohmann::json starts_json(const AlignResult& r) {
                       {"separated", s.separated},
                       {"same_up_to_free", s.same_up_to_free},
                       {"same_when_settled", s.same_when_settled},
+                      {"ties_best", s.ties_best},
                       {"T_ref_scan", pose}});
   }
   return starts;

@@ -139,15 +139,19 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];
     const StartReport& other = ranking.starts[static_cast<std::size_t>(ranking.runner_up)];
-    const std::string pose = "fits almost as well as '" + best.label + "' at a pose " + how_far(best, other, centre);
     if (coarse_start) {
-      no.push_back("coarse start '" + other.label + "' " + pose +
+      no.push_back("coarse start '" + other.label + "' fits almost as well as '" + best.label + "' at a pose " +
+                   how_far(best, other, centre) +
                    format(" (inlier share %.3f against %.3f, see starts)", other.inlier_share, best.inlier_share) +
                    kWhatToDo);
     } else {
-      // From a start the user gave (ranked against its symmetric turns, align.cpp): the data cannot tell the turns
-      // apart, so the user's placement decided.
-      check.push_back("'" + other.label + "' " + pose +
+      // From a start the user gave (ranked against its symmetric turns, align.cpp): the data cannot tell the tied
+      // turns apart, so the user's placement decided between them.
+      const int from = result.started_from >= 0 ? result.started_from : ranking.best;
+      const StartReport& kept = ranking.starts[static_cast<std::size_t>(from)];
+      const StartReport& rival = from == ranking.best ? other : best;
+      check.push_back("'" + rival.label + "' fits almost as well as '" + kept.label + "' at a pose " +
+                      how_far(kept, rival, centre) +
                       " (the part is near-symmetric): the scan does not tell them apart, so the start given decided; "
                       "check it");
     }

@@ -38,9 +38,10 @@ struct MultiStartOptions {
   double separation_min_share = 0.005;
 
   // The best start is also probed turned by the reference's candidate symmetries (half turns about its principal
-  // axes through its centroid; quarter turns about an axis whose other two spread within symmetry_similarity of each
-  // other), labelled "... turned N deg about reference axis K": a symmetric reference then makes the result
-  // ambiguous even when no start landed on the other pose.
+  // axes through its centroid; turns every 15 deg about an axis whose other two spread within symmetry_similarity of
+  // each other, and half turns about the axes between those two every 15 deg: a square plate's diagonal), labelled
+  // "... turned N deg about ...": a symmetric reference then makes the result ambiguous even when no start landed on
+  // the other pose.
   bool probe_reference_symmetry = true;
   double symmetry_similarity = 0.1;
 
@@ -95,6 +96,9 @@ struct StartReport {
   // A close start elsewhere whose probe, and the best's, run on to convergence (MultiStartOptions::settle_iterations)
   // meet: the probes had stopped short on the way to one minimum, not at two.
   bool same_when_settled = false;
+  // Competes with the best (close, elsewhere, not told apart): every such start makes the result ambiguous, the best
+  // of them is the runner-up.
+  bool ties_best = false;
 };
 
 struct MultiStartResult {

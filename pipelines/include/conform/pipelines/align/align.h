@@ -136,7 +136,10 @@ struct AlignResult {
   IcpMethod method = IcpMethod::kPointToPlane;  // as used
   AlignInit init = AlignInit::kNone;
   std::string start;       // the start that won: "identity", "pairs", "fpfh", "pca +x+y", ...
-  CoarseResult coarse;     // kPca, kFpfh: every start and its score
+  CoarseResult coarse;     // kPca, kFpfh: every start and its score; kNone: the start given and its symmetric turns
+  // The coarse start fine ICP ran from (index into coarse.ranking.starts): the best, or from a start the user gave
+  // the user's own (0) or the tied turn nearest to it; -1 when none was ranked.
+  int started_from = -1;
   PointPairsResult pairs;  // kPairs: the transform and each pair's residual
   Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();  // where fine ICP started
   double max_distance_mm = 0.0;                               // as used
