@@ -1,5 +1,6 @@
 #include "conform/core/phong_surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -168,6 +169,152 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
       normals_.push_back(corner);
     }
   }
+  find_rims();
+}
+
+Eigen::Vector3d PhongSurface::face_normal_of(int f) const {
+  const Face& face = faces_[static_cast<std::size_t>(f)];
+  const Eigen::Vector3d& a = vertices_[static_cast<std::size_t>(face[0])];
+  return (vertices_[static_cast<std::size_t>(face[1])] - a).cross(vertices_[static_cast<std::size_t>(face[2])] - a);
+}
+
+void PhongSurface::find_rims() {
+  // Every edge with its face, sorted so that the two faces of an edge are adjacent.
+  struct Side {
+    std::int32_t a, b, face;
+  };
+  std::vector<Side> sides;
+  sides.reserve(3 * faces_.size());
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t i = faces_[f][static_cast<std::size_t>(k)],
+                         j = faces_[f][static_cast<std::size_t>((k + 1) % 3)];
+      sides.push_back({std::min(i, j), std::max(i, j), static_cast<std::int32_t>(f)});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
+  });
+  // Face f is flat along a-b when its corners there use its own normal (or none), as lift() sees them.
+  const auto flat_along = [&](std::int32_t f, std::int32_t a, std::int32_t b) {
+    const auto fu = static_cast<std::size_t>(f);
+    const Face& face = faces_[fu];
+    const Eigen::Vector3d own = unit_or_zero(face_normal_of(f));
+    for (int k = 0; k < 3; ++k) {
+      if (face[static_cast<std::size_t>(k)] != a && face[static_cast<std::size_t>(k)] != b) continue;
+      const Eigen::Vector3d& n = corner_normal(fu, k);
+      if (!n.isZero() && std::abs(n.dot(own)) < kFlatCosine) return false;
+    }
+    return true;
+  };
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].a == sides[i].a && sides[j].b == sides[i].b) ++j;
+    if (j - i == 2) {
+      const Side& x = sides[i];
+      const Side& y = sides[i + 1];
+      const bool x_flat = flat_along(x.face, x.a, x.b), y_flat = flat_along(y.face, x.a, x.b);
+      if (x_flat != y_flat) {
+        const Rim rim{x.a, x.b, x_flat ? x.face : y.face, x_flat ? y.face : x.face};
+        if (!rim_offset(rim, 0.5).isZero()) rims_.push_back(rim);
+      }
+    }
+    i = j;
+  }
+  rim_start_.assign(vertices_.size() + 1, 0);
+  for (const Rim& r : rims_) {
+    ++rim_start_[static_cast<std::size_t>(r.a) + 1];
+    ++rim_start_[static_cast<std::size_t>(r.b) + 1];
+  }
+  for (std::size_t v = 0; v < vertices_.size(); ++v) rim_start_[v + 1] += rim_start_[v];
+  rim_at_vertex_.resize(rim_start_.back());
+  std::vector<std::size_t> fill(rim_start_.begin(), rim_start_.end() - 1);
+  for (std::size_t r = 0; r < rims_.size(); ++r) {
+    for (std::int32_t v : {rims_[r].a, rims_[r].b}) {
+      rim_at_vertex_[fill[static_cast<std::size_t>(v)]++] = static_cast<std::int32_t>(r);
+    }
+  }
+}
+
+Eigen::Vector3d PhongSurface::rim_offset(const Rim& rim, double t) const {
+  const auto f = static_cast<std::size_t>(rim.curved_face);
+  const Face& face = faces_[f];
+  const Eigen::Vector3d own = unit_or_zero(face_normal_of(rim.curved_face));
+  const Eigen::Vector3d& ra = vertices_[static_cast<std::size_t>(rim.a)];
+  const Eigen::Vector3d x = ra + t * (vertices_[static_cast<std::size_t>(rim.b)] - ra);
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const std::int32_t v = face[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d& corner = corner_normal(f, k);
+    if ((v != rim.a && v != rim.b) || corner.isZero()) continue;
+    const Eigen::Vector3d n = corner.dot(own) < 0.0 ? Eigen::Vector3d(-corner) : corner;
+    const double weight = v == rim.a ? 1.0 - t : t;
+    offset += weight * (x - vertices_[static_cast<std::size_t>(v)]).dot(n) * n;
+  }
+  return -kPhongShape * offset;
+}
+
+void PhongSurface::apply_rim(const Rim& rim, const Eigen::Vector3d& q, const SurfacePoint& s, bool* on_flat,
+                             PhongPoint* best, double* best_sq) const {
+  const Face& flat = faces_[static_cast<std::size_t>(rim.flat_face)];
+  const auto at = [&](std::int32_t i) -> const Eigen::Vector3d& { return vertices_[static_cast<std::size_t>(i)]; };
+  const Eigen::Vector3d normal = unit_or_zero(face_normal_of(rim.flat_face));
+  const Eigen::Vector3d& a = at(rim.a);
+  const Eigen::Vector3d edge = at(rim.b) - a;
+  if (normal.isZero()) return;
+  const double height = (q - a).dot(normal);
+  const Eigen::Vector3d on_plane = q - height * normal;
+  const double t = (on_plane - a).dot(edge) / edge.squaredNorm();
+  if (!(t > 0.0 && t < 1.0)) return;
+  // Across the edge, out of the flat face, in its plane.
+  Eigen::Vector3d out = unit_or_zero(edge.cross(normal));
+  const std::int32_t third = flat[0] != rim.a && flat[0] != rim.b   ? flat[0]
+                             : flat[1] != rim.a && flat[1] != rim.b ? flat[1]
+                                                                    : flat[2];
+  if ((at(third) - a).dot(out) > 0.0) out = -out;
+  const double across = (on_plane - a - t * edge).dot(out);
+  const double bulge = rim_offset(rim, t).dot(out);
+  if (bulge > 0.0 && across > 0.0 && across <= bulge) {
+    // Over the sliver the flat face's plane reaches to the curve: the plane is the surface there. Outside it, the
+    // plane is the answer even when the curved side's lifted edge comes nearer: that edge may leave the plane by a
+    // little (the side's normals at the rim lean out of it on a mesh that is not exact), by no more than the bulge.
+    const bool outside = height >= 0.0;
+    if (outside ? height <= std::sqrt(*best_sq) + bulge : height * height < *best_sq) {
+      best->point = on_plane;
+      best->normal = normal;
+      best->lifted = true;
+      *best_sq = height * height;
+      *on_flat = false;
+    }
+  } else if (bulge < 0.0 && across < 0.0 && across >= bulge) {
+    // Over the part of the flat face the curve cuts off: no surface there; the curved face is.
+    const Face& curved = faces_[static_cast<std::size_t>(rim.curved_face)];
+    SurfacePoint c = closest_point_on_triangle(q, at(curved[0]), at(curved[1]), at(curved[2]));
+    c.face = rim.curved_face;
+    const PhongPoint p = lift(c);
+    if (!p.lifted) return;
+    const double sq = (q - p.point).squaredNorm();
+    const bool on_this_plane = *on_flat && unit_or_zero(face_normal_of(s.face)).dot(normal) >= kFlatCosine;
+    if (on_this_plane || sq < *best_sq) {
+      *best = p;
+      *best_sq = sq;
+      *on_flat = false;
+    }
+  }
+}
+
+PhongPoint PhongSurface::nearest(const Eigen::Vector3d& q, const SurfacePoint& s) const {
+  PhongPoint best = lift(s);
+  if (rims_.empty()) return best;
+  bool on_flat = !best.lifted;
+  double best_sq = best.lifted ? (q - best.point).squaredNorm() : s.sq_distance;
+  for (std::int32_t v : faces_[static_cast<std::size_t>(s.face)]) {
+    for (std::size_t j = rim_start_[static_cast<std::size_t>(v)]; j < rim_start_[static_cast<std::size_t>(v) + 1];
+         ++j) {
+      apply_rim(rims_[static_cast<std::size_t>(rim_at_vertex_[j])], q, s, &on_flat, &best, &best_sq);
+    }
+  }
+  return best;
 }
 
 // Eq. (2)-(3), Boubekeur & Alexa 2008, shape factor 1/2: s moves by half the barycentric mean of its offsets to the
@@ -193,8 +340,8 @@ PhongPoint PhongSurface::lift(const SurfacePoint& s) const {
     }
     const Eigen::Vector3d n = cosine < 0.0 ? Eigen::Vector3d(-corner) : corner;
     out.lifted = out.lifted || std::abs(cosine) < kFlatCosine;
-    offset += s.barycentric[k] * (s.point - vertices_[static_cast<std::size_t>(face[static_cast<std::size_t>(k)])])
-                                     .dot(n) * n;
+    offset += s.barycentric[k] *
+              (s.point - vertices_[static_cast<std::size_t>(face[static_cast<std::size_t>(k)])]).dot(n) * n;
     normal += s.barycentric[k] * n;
   }
   out.normal = unit_or_zero(normal);

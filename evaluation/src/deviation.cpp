@@ -124,10 +124,11 @@ DeviationResult compute_deviation(const std::vector<Eigen::Vector3d>& scan, cons
     const SurfacePoint s = reference.closest(scan[i], options.max_distance_mm);
     if (!s.found()) return;
     result.triangle[i] = s.face;
-    const PhongPoint lifted = smooth != nullptr && options.smooth_surface ? smooth->lift(s) : PhongPoint{};
+    const PhongPoint lifted = smooth != nullptr && options.smooth_surface ? smooth->nearest(scan[i], s) : PhongPoint{};
     if (lifted.lifted) {
-      // On the smooth surface the side is the one its interpolated normal points to: a point between a facet and the
-      // curved surface above it is inside.
+      // On the smooth surface the side is the one its normal points to: a point between a facet and the curved
+      // surface above it is inside; beside a rim, the flat face's plane reaches to the curved side's lifted edge
+      // (PhongSurface::nearest), so a point under a cap's rim is signed by the cap, not by the side.
       const double d = (scan[i] - lifted.point).norm();
       result.deviation_mm[i] = (scan[i] - lifted.point).dot(lifted.normal) < 0.0 ? -d : d;
       result.closest[i] = lifted.point;

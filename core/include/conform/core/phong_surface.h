@@ -14,6 +14,7 @@
 // keeps its own normal, so flat faces stay flat and sharp edges stay sharp.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -58,6 +59,16 @@ class PhongSurface {
   // smooth surface, Eq. (2)-(3) of Boubekeur & Alexa with shape factor 1/2, and the interpolated normal there.
   PhongPoint lift(const SurfacePoint& s) const;
 
+  // The point of the smooth surface nearest q, for a signed distance, given s = index.closest(q) (found): lift(s),
+  // except beside a rim, a crease where a face kept flat along it (a cylinder's cap) meets a curved one (its side).
+  // The curved face's edge there is lifted off the chord by up to the chord's sagitta, in the flat face's plane, so
+  // the plane reaches to that curve and not to the chord: where the curve bulges out of the flat face (a convex rim),
+  // a q over the sliver between chord and curve is measured to the plane (lift(s) would put it on the curved side
+  // and sign it by the side's normal: 0.1 mm under a cap read -0.1); where the curve cuts into the flat face (a
+  // hole's rim), a q over the part of the face beyond the curve is measured to the curved face. lifted is false when
+  // none of this moves the point and s lies on a flat face: measure to s itself.
+  PhongPoint nearest(const Eigen::Vector3d& q, const SurfacePoint& s) const;
+
   const std::vector<unsigned char>& smooth() const { return smooth_; }
   // The normal face f uses at its k-th corner (unit, or zero where the faces around it have no area).
   const Eigen::Vector3d& corner_normal(std::size_t f, int k) const {
@@ -67,9 +78,27 @@ class PhongSurface {
  private:
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Face> faces_;
-  std::vector<Eigen::Vector3d> normals_;            // the vertex normals, then the corners' own at creases
+  std::vector<Eigen::Vector3d> normals_;              // the vertex normals, then the corners' own at creases
   std::vector<std::array<std::int32_t, 3>> corners_;  // per face: its corners' indices into normals_
   std::vector<unsigned char> smooth_;
+  // Rims (see nearest()): the edge a-b, the face kept flat along it and the curved face across it; per vertex (in
+  // compressed rows) the rims that end there.
+  struct Rim {
+    std::int32_t a, b, flat_face, curved_face;
+  };
+  std::vector<Rim> rims_;
+  std::vector<std::size_t> rim_start_;
+  std::vector<std::int32_t> rim_at_vertex_;
+
+  void find_rims();
+  // The curved face's lifted edge a-b at a + t (b - a), minus that point: Eq. (2) on the edge.
+  Eigen::Vector3d rim_offset(const Rim& rim, double t) const;
+  // The rim's answer for q (see nearest()) when it has one, replacing *best (squared distance *best_sq).
+  // on_flat: *best is still s on a flat face (lift(s) did not move it).
+  void apply_rim(const Rim& rim, const Eigen::Vector3d& q, const SurfacePoint& s, bool* on_flat, PhongPoint* best,
+                 double* best_sq) const;
+  // |ab x ac| times the unit normal of face f.
+  Eigen::Vector3d face_normal_of(int f) const;
 };
 
 }  // namespace conform
