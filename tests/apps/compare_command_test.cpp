@@ -106,6 +106,40 @@ TEST_F(CompareCommand, TextWithoutToleranceAndTheSameBytesTwice) {
   EXPECT_EQ(test::read_bytes(dir_.file("a.png")), test::read_bytes(dir_.file("b.png")));
 }
 
+// A reference exported too coarse for the tolerance: the same patch in 8 mm triangles (an edge's sagitta on R 100 is
+// 0.08 mm; 0.041 mm estimated, the staggered triangles being narrower across the curve) against +-0.05 mm is flagged
+// on stderr and in the JSON, naming the file and what to do, and still measured (exit 0); the 0.8 mm nominal is not,
+// nor is the coarse one against +-0.5 mm.
+TEST_F(CompareCommand, AReferenceTooCoarseForTheToleranceIsFlagged) {
+  const std::string coarse = dir_.file("coarse.ply");
+  ASSERT_EQ(conform({"generate", "tube", "--quiet", "--radius", "100", "--length", "80", "--arc-deg", "60", "--edge",
+                     "8", "--out", coarse})
+                .exit_code,
+            0);
+  struct Case {
+    std::string reference, tolerance;
+    bool flagged;
+  };
+  for (const Case& c : {Case{coarse, "0.05", true}, Case{reference_, "0.05", false}, Case{coarse, "0.5", false}}) {
+    const auto r = compare({"--scan", scan_, "--reference", c.reference, "--tolerance", c.tolerance, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const auto& e = j["reference_chord_error"];
+    ASSERT_TRUE(e.is_object()) << r.out;
+    EXPECT_EQ(e["too_coarse"], c.flagged) << c.reference << " " << c.tolerance;
+    EXPECT_DOUBLE_EQ(e["bar_mm"].get<double>(), 0.5 * std::stod(c.tolerance));
+    const bool warned = r.err.find("too coarse") != std::string::npos;
+    EXPECT_EQ(warned, c.flagged) << r.err;
+    EXPECT_EQ(j["warnings"].size(), c.flagged ? 1u : 0u);
+    if (c.flagged) {
+      EXPECT_NE(r.err.find(coarse), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("Export it finer"), std::string::npos) << r.err;
+      EXPECT_NEAR(e["max_mm"].get<double>(), 0.041, 0.01);
+      EXPECT_GT(e["area_over_pct"].get<double>(), 50.0);
+    }
+  }
+}
+
 TEST_F(CompareCommand, TransformMovesTheScanIntoTheReferenceFrame) {
   // The nominal patch as its own scan, moved 0.5 mm along x (the patch's middle normal) by T_ref_scan.
   const std::string transform = dir_.file("T_ref_scan.txt");

@@ -102,6 +102,27 @@ void add_doubts(const Mesh& scan, const Mesh& reference, const CompareOptions& o
   }
 }
 
+// A mesh reference too coarse for the tolerance (or, without one, for the deviations measured): its faces that lie
+// farther from the surface they approximate than the bar, named with what to do. The measurement stands.
+void check_chord_error(const Mesh& reference, const CompareOptions& options, CompareResult& result) {
+  const DeviationStatistics& s = result.statistics;
+  const double bar = s.tolerance_mm ? kChordErrorShare * *s.tolerance_mm
+                                    : std::max(kChordErrorShare * s.p95_abs_mm, kChordErrorFloorMm);
+  const ChordErrorSummary c = summarize_chord_error(reference, estimate_chord_error(reference), bar);
+  result.reference_chord_error = c;
+  if (c.faces_over == 0) return;
+  char text[600];
+  std::snprintf(text, sizeof(text),
+                "%s is too coarse for %s: its facets lie up to %.3g mm from the curved surface they approximate "
+                "(estimated from the angles between neighbouring faces) on %zu faces, %.4g mm2 (%.1f %% of its area), "
+                "beyond %.3g mm (half %s); deviations there can be off by as much. Export it finer (chordal "
+                "deflection 0.005 mm or less) or give the STEP/IGES file",
+                options.reference_path.c_str(), s.tolerance_mm ? "the tolerance" : "the deviations measured", c.max_mm,
+                c.faces_over, c.area_over_mm2, c.area_mm2 > 0.0 ? 100.0 * c.area_over_mm2 / c.area_mm2 : 0.0, bar,
+                s.tolerance_mm ? "the tolerance" : "the p95 of |d|, or 0.005 mm");
+  result.warnings.emplace_back(text);
+}
+
 void write_outputs(const CompareOptions& options, const Mesh& scan_ref, CompareResult& result) {
   if (options.out_deviation_path.empty() && options.out_histogram_path.empty()) return;
   report(options.progress, "write", 0.0);
@@ -177,6 +198,7 @@ CompareResult run_compare(const CompareOptions& options) {
   DeviationStatisticsOptions statistics;
   statistics.tolerance_mm = options.tolerance_mm;
   result.statistics = deviation_statistics(result.deviation.deviation_mm, statistics);
+  if (reference.has_faces() && !is_cad_file(options.reference_path)) check_chord_error(reference, options, result);
   add_doubts(scan, reference, options, result);
   write_outputs(options, scan, result);
   if (options.keep_geometry) {

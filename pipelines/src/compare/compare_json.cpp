@@ -49,6 +49,17 @@ nlohmann::json compare_json(const CompareOptions& options, const CompareResult& 
     j["within_tolerance"] = s.within_tolerance();
   }
   j["cad"] = cad_json(r.cad_inputs);
+  j["reference_chord_error"] = nullptr;
+  if (r.reference_chord_error) {
+    const ChordErrorSummary& c = *r.reference_chord_error;
+    j["reference_chord_error"] = {{"max_mm", c.max_mm},
+                                  {"bar_mm", c.bar_mm},
+                                  {"faces_over", c.faces_over},
+                                  {"area_over_mm2", c.area_over_mm2},
+                                  {"area_over_pct", c.area_mm2 > 0.0 ? 100.0 * c.area_over_mm2 / c.area_mm2 : 0.0},
+                                  {"too_coarse", c.faces_over > 0}};
+  }
+  j["warnings"] = r.warnings;
   return j;
 }
 

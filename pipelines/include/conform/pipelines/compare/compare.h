@@ -21,6 +21,7 @@
 #include "conform/core/cad.h"
 #include "conform/core/mesh.h"
 #include "conform/core/progress.h"
+#include "conform/evaluation/chord_error.h"
 #include "conform/evaluation/deviation.h"
 #include "conform/evaluation/statistics.h"
 
@@ -31,6 +32,13 @@ using DeviationColourFn = std::function<std::array<std::uint8_t, 3>(double devia
 // A PNG file's bytes picturing all deviations.
 using DeviationHistogramFn =
     std::function<std::string(const std::vector<double>& deviation_mm, const DeviationStatistics&)>;
+
+// A mesh reference whose facets lie this share of the tolerance from the surface they approximate is reported as too
+// coarse: where the smooth surface cannot restore the curve (chords over the crease angle, a bend in one or two
+// chords) the deviations are off by up to that much.
+constexpr double kChordErrorShare = 0.5;
+// Without a tolerance the bar is the share of the p95 of |d|, but not below the CAD reader's default deflection.
+constexpr double kChordErrorFloorMm = 0.005;
 
 struct CompareOptions {
   std::string scan_path;       // cloud or mesh, any format read_geometry reads
@@ -71,6 +79,10 @@ struct CompareResult {
   // cone, sphere, torus; evaluation/cad_deviation.h); the others to the tessellation's smooth surface.
   std::size_t exact_points = 0;
   DeviationStatistics statistics;
+  // Against a mesh reference (not CAD: its deflection is known): how far its facets may lie from the surface they
+  // approximate (evaluation/chord_error.h), against the bar kChordErrorShare of the tolerance (of the p95 of |d|
+  // without one, at least kChordErrorFloorMm); over it, a warning. Unset for a CAD or cloud reference.
+  std::optional<ChordErrorSummary> reference_chord_error;
   std::vector<std::string> warnings;  // the readers' (ignored properties, ...) and doubts about units or placement
   std::vector<CadReport> cad_inputs;  // each CAD file read: units, bodies, deflection, triangles
   std::string out_deviation_path;     // the files written (empty when not asked for)
