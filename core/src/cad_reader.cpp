@@ -18,6 +18,7 @@
 #include "conform/core/input_file.h"
 #include "conform/core/io.h"
 #include "conform/core/mesh_weld.h"
+#include "conform/core/triangle_index.h"
 
 namespace conform {
 
@@ -144,6 +145,77 @@ CadFace face_of(const conform_cad_face& f) {
   return face;
 }
 
+// How deep (in chordal deflections of the tessellation, plus a float rounding of the part's size) a triangle of one
+// solid must lie inside another to count as an overlap: solids that only touch (an assembly's parts in contact) have
+// their faces within the deflection of each other's.
+constexpr double kOverlapDeflections = 2.0;
+
+// Solids whose interiors overlap (two parts exported without their boolean union, an assembly whose parts
+// interpenetrate): their faces inside each other are measured as surfaces of the part, and points near them take the
+// wrong sign. For each pair of solids whose boxes overlap, the triangle centroids of each lying deeper than the bound
+// inside the other (signed by the pseudo-normal, core/triangle_index.h) name the pair.
+void warn_overlapping_solids(const std::string& path, const CadReport& cad, const Mesh& mesh,
+                             const std::vector<std::size_t>& body_of_triangle, std::vector<std::string>* warnings) {
+  const std::size_t n = cad.bodies.size();
+  const auto overlap = [&](std::size_t i, std::size_t j, double depth) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (cad.bodies[i].box_max_mm[k] <= cad.bodies[j].box_min_mm[k] + depth ||
+          cad.bodies[j].box_max_mm[k] <= cad.bodies[i].box_min_mm[k] + depth) {
+        return false;
+      }
+    }
+    return true;
+  };
+  const auto faces_of = [&](std::size_t b) {
+    Mesh part;
+    part.vertices = mesh.vertices;
+    for (std::size_t t = 0; t < mesh.faces.size(); ++t) {
+      if (body_of_triangle[t] == b) part.faces.push_back(mesh.faces[t]);
+    }
+    return part;
+  };
+  double size = 0.0;
+  for (const Eigen::Vector3d& v : mesh.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
+  const double depth = kOverlapDeflections * cad.deflection_mm + 1e-6 * size;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (cad.bodies[i].kind != CadBodyKind::kSolid || cad.bodies[j].kind != CadBodyKind::kSolid ||
+          !overlap(i, j, depth)) {
+        continue;
+      }
+      std::size_t inside = 0;
+      double deepest = 0.0;
+      for (const auto& [a, b] : {std::pair<std::size_t, std::size_t>{i, j}, {j, i}}) {
+        const Mesh other = faces_of(b);
+        if (other.faces.empty()) continue;
+        const TriangleIndex index(other);
+        for (std::size_t t = 0; t < mesh.faces.size(); ++t) {
+          if (body_of_triangle[t] != a) continue;
+          const Face& f = mesh.faces[t];
+          const Eigen::Vector3d c =
+              (mesh.vertices[static_cast<std::size_t>(f[0])] + mesh.vertices[static_cast<std::size_t>(f[1])] +
+               mesh.vertices[static_cast<std::size_t>(f[2])]) /
+              3.0;
+          const SurfacePoint s = index.closest(c);
+          const double distance = std::sqrt(s.sq_distance);
+          if ((c - s.point).dot(index.normal_at(s)) < 0.0 && distance > depth) {
+            ++inside;
+            deepest = std::max(deepest, distance);
+          }
+        }
+      }
+      if (inside == 0) continue;
+      char text[400];
+      std::snprintf(text, sizeof(text),
+                    ": solids %zu and %zu overlap (%zu of their triangles lie inside the other, up to %.3g mm deep): "
+                    "the faces inside are measured as surfaces of the part and points near them take the wrong "
+                    "sign. Unite them in CAD (a boolean union) and export one solid",
+                    i + 1, j + 1, inside, deepest);
+      warnings->push_back(path + text);
+    }
+  }
+}
+
 // read_cad's work; `faces` (when not null) also receives the faces, per welded triangle and per face.
 Mesh read_cad_with_faces(const std::string& path, const CadReadOptions& options, CadReport* report_out,
                          std::vector<std::string>* warnings, CadFaces* faces) {
@@ -166,7 +238,7 @@ Mesh read_cad_with_faces(const std::string& path, const CadReadOptions& options,
   request.max_triangles = options.max_triangles;
   detail::CadWireResult result = detail::read_cad_in_child(path, request, options);
   std::vector<std::size_t> kept;
-  MeshWeldResult welded = weld_coincident_vertices(std::move(result.mesh), path, faces != nullptr ? &kept : nullptr);
+  MeshWeldResult welded = weld_coincident_vertices(std::move(result.mesh), path, &kept);
 
   CadReport cad;
   cad.read = true;
@@ -189,6 +261,13 @@ Mesh read_cad_with_faces(const std::string& path, const CadReadOptions& options,
       if (end > start) warnings->push_back(path + ": " + text.substr(start, end - start));
       start = end + 1;
     }
+  }
+  if (warnings != nullptr && cad.bodies.size() > 1 && !result.triangle_faces.empty()) {
+    std::vector<std::size_t> body_of_triangle(kept.size());
+    for (std::size_t t = 0; t < kept.size(); ++t) {  // in range: checked by decode_cad_result
+      body_of_triangle[t] = result.faces[static_cast<std::size_t>(result.triangle_faces[kept[t]])].body;
+    }
+    warn_overlapping_solids(path, cad, welded.mesh, body_of_triangle, warnings);
   }
   if (faces != nullptr) {
     faces->faces.clear();
