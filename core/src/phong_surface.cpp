@@ -91,8 +91,8 @@ std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<E
 }
 
 PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normals,
-                           double crease_angle_rad)
-    : vertices_(mesh.vertices), faces_(mesh.faces) {
+                           double crease_angle_rad, bool with_rims)
+    : vertices_(mesh.vertices), faces_(mesh.faces), with_rims_(with_rims) {
   check_faces(mesh);
   const std::size_t n = mesh.vertices.size();
   if (!vertex_normals.empty() && vertex_normals.size() != n) {
@@ -169,7 +169,7 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
       normals_.push_back(corner);
     }
   }
-  find_rims();
+  if (with_rims_) find_rims();
 }
 
 Eigen::Vector3d PhongSurface::face_normal_of(int f) const {
@@ -304,6 +304,7 @@ void PhongSurface::apply_rim(const Rim& rim, const Eigen::Vector3d& q, const Sur
 }
 
 PhongPoint PhongSurface::nearest(const Eigen::Vector3d& q, const SurfacePoint& s) const {
+  if (!with_rims_) throw Error("smooth surface: nearest() on a surface built without its rims");
   PhongPoint best = lift(s);
   if (rims_.empty()) return best;
   bool on_flat = !best.lifted;

@@ -113,6 +113,14 @@ TEST(PhongSurface, FoldOverTheCreaseAngleStaysFlat) {
   EXPECT_THROW(PhongSurface(tri, {V(0, 0, 1)}), Error);
   tri.faces = {{0, 1, 3}};
   EXPECT_THROW(PhongSurface{tri}, Error);
+  // Built for lifting only (ICP), it lifts as the full one does and refuses nearest(), which needs the rims.
+  tri.faces = {{0, 1, 2}};
+  const PhongSurface full(tri), lift_only(tri, {}, kDefaultCreaseAngleRad, false);
+  const TriangleIndex index(tri);
+  const SurfacePoint s = index.closest(V(0.2, 0.2, 0.5));
+  EXPECT_EQ(lift_only.lift(s).point, full.lift(s).point);
+  EXPECT_NO_THROW(full.nearest(V(0.2, 0.2, 0.5), s));
+  EXPECT_THROW(lift_only.nearest(V(0.2, 0.2, 0.5), s), Error);
 }
 
 // A block 40 x 30 x 20 mm with R10 fillets on its vertical edges, tessellated as CAD exports it (flat sides two

@@ -51,9 +51,11 @@ class PhongSurface {
   // triangulation happens to split more often). At a vertex that is not smooth (smooth_vertices), each face's corner
   // gets the angle-weighted normal of the faces around the vertex within the crease angle of its own: the curved side
   // of a cylinder's rim is curved up to the rim, the flat cap stays flat. Keeps its own copy of the mesh. Throws
-  // conform::Error for a face index out of range or a vertex_normals of the wrong size.
+  // conform::Error for a face index out of range or a vertex_normals of the wrong size. with_rims false: the rims
+  // nearest() needs are not found (ICP lifts its pairs only: finding them sorts every edge, 0.15 s of an align
+  // against a 100k-face mesh), and nearest() throws.
   explicit PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normals = {},
-                        double crease_angle_rad = kDefaultCreaseAngleRad);
+                        double crease_angle_rad = kDefaultCreaseAngleRad, bool with_rims = true);
 
   // The closest point s on the flat triangles (TriangleIndex::closest over the same mesh, s.found()) moved onto the
   // smooth surface, Eq. (2)-(3) of Boubekeur & Alexa with shape factor 1/2, and the interpolated normal there.
@@ -86,6 +88,7 @@ class PhongSurface {
   struct Rim {
     std::int32_t a, b, flat_face, curved_face;
   };
+  bool with_rims_ = true;
   std::vector<Rim> rims_;
   std::vector<std::size_t> rim_start_;
   std::vector<std::int32_t> rim_at_vertex_;
