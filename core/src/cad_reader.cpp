@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -166,13 +167,20 @@ void warn_overlapping_solids(const std::string& path, const CadReport& cad, cons
     }
     return true;
   };
-  const auto faces_of = [&](std::size_t b) {
-    Mesh part;
-    part.vertices = mesh.vertices;
-    for (std::size_t t = 0; t < mesh.faces.size(); ++t) {
-      if (body_of_triangle[t] == b) part.faces.push_back(mesh.faces[t]);
+  std::vector<std::vector<std::size_t>> triangles(n);  // each body's
+  for (std::size_t t = 0; t < body_of_triangle.size(); ++t) {
+    if (body_of_triangle[t] < n) triangles[body_of_triangle[t]].push_back(t);
+  }
+  // Each body's triangle index, built once, when a pair first needs it.
+  std::vector<std::unique_ptr<TriangleIndex>> indices(n);
+  const auto index_of = [&](std::size_t b) -> const TriangleIndex& {
+    if (!indices[b]) {
+      Mesh part;
+      part.vertices = mesh.vertices;
+      for (const std::size_t t : triangles[b]) part.faces.push_back(mesh.faces[t]);
+      indices[b] = std::make_unique<TriangleIndex>(part);
     }
-    return part;
+    return *indices[b];
   };
   double size = 0.0;
   for (const Eigen::Vector3d& v : mesh.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
@@ -180,17 +188,14 @@ void warn_overlapping_solids(const std::string& path, const CadReport& cad, cons
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       if (cad.bodies[i].kind != CadBodyKind::kSolid || cad.bodies[j].kind != CadBodyKind::kSolid ||
-          !overlap(i, j, depth)) {
+          triangles[i].empty() || triangles[j].empty() || !overlap(i, j, depth)) {
         continue;
       }
       std::size_t inside = 0;
       double deepest = 0.0;
       for (const auto& [a, b] : {std::pair<std::size_t, std::size_t>{i, j}, {j, i}}) {
-        const Mesh other = faces_of(b);
-        if (other.faces.empty()) continue;
-        const TriangleIndex index(other);
-        for (std::size_t t = 0; t < mesh.faces.size(); ++t) {
-          if (body_of_triangle[t] != a) continue;
+        const TriangleIndex& index = index_of(b);
+        for (const std::size_t t : triangles[a]) {
           const Face& f = mesh.faces[t];
           const Eigen::Vector3d c =
               (mesh.vertices[static_cast<std::size_t>(f[0])] + mesh.vertices[static_cast<std::size_t>(f[1])] +

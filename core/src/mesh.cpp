@@ -45,6 +45,22 @@ Eigen::Vector3d face_normal(const Mesh& mesh, std::size_t f) {
   return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
+VertexFaces faces_around_vertices(const Mesh& mesh) {
+  const std::size_t n = mesh.vertices.size();
+  VertexFaces out;
+  out.start.assign(n + 1, 0);
+  for (const Face& face : mesh.faces) {
+    for (std::int32_t i : face) ++out.start[static_cast<std::size_t>(i) + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v) out.start[v + 1] += out.start[v];
+  out.faces.resize(out.start[n]);
+  std::vector<std::size_t> fill(out.start.begin(), out.start.end() - 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::int32_t i : mesh.faces[f]) out.faces[fill[static_cast<std::size_t>(i)]++] = f;
+  }
+  return out;
+}
+
 double face_area(const Mesh& mesh, std::size_t f) { return 0.5 * face_cross(mesh, f).norm(); }
 
 double surface_area(const Mesh& mesh) {

@@ -60,18 +60,14 @@ std::vector<unsigned char> smooth_vertices(const Mesh& mesh, const std::vector<E
                                            double crease_angle_rad) {
   const double crease_cosine = std::cos(crease_angle_rad);
   const std::size_t n = mesh.vertices.size();
-  // Each vertex's faces (compressed rows) with their unit normals; faces without area say nothing about the shape.
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const Face& f : mesh.faces) {
-    for (std::int32_t i : f) ++start[static_cast<std::size_t>(i) + 1];
-  }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<Eigen::Vector3d> around(start[n]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (const Face& f : mesh.faces) {
+  // Each vertex's faces with their unit normals; faces without area say nothing about the shape.
+  const VertexFaces rows = faces_around_vertices(mesh);
+  const std::vector<std::size_t>& start = rows.start;
+  std::vector<Eigen::Vector3d> around(rows.faces.size());
+  for (std::size_t j = 0; j < around.size(); ++j) {
+    const Face& f = mesh.faces[rows.faces[j]];
     const Eigen::Vector3d& a = vertex(mesh, f[0]);
-    const Eigen::Vector3d u = unit_or_zero((vertex(mesh, f[1]) - a).cross(vertex(mesh, f[2]) - a));
-    for (std::int32_t i : f) around[fill[static_cast<std::size_t>(i)]++] = u;
+    around[j] = unit_or_zero((vertex(mesh, f[1]) - a).cross(vertex(mesh, f[2]) - a));
   }
   std::vector<unsigned char> smooth(n, 0);
   for (std::size_t v = 0; v < n; ++v) {
@@ -116,17 +112,9 @@ PhongSurface::PhongSurface(const Mesh& mesh, const std::vector<Eigen::Vector3d>&
   smooth_ = smooth_vertices(mesh, normals_, crease_angle_rad);
   const std::vector<unsigned char> flat = planar_faces(mesh, crease_angle_rad);
 
-  // The faces around each vertex (compressed rows).
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const Face& face : mesh.faces) {
-    for (std::int32_t i : face) ++start[static_cast<std::size_t>(i) + 1];
-  }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> around(start[n]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (std::int32_t i : mesh.faces[f]) around[fill[static_cast<std::size_t>(i)]++] = f;
-  }
+  const VertexFaces rows = faces_around_vertices(mesh);
+  const std::vector<std::size_t>& start = rows.start;
+  const std::vector<std::size_t>& around = rows.faces;
 
   const double crease_cosine = std::cos(crease_angle_rad);
   // The angle-weighted normal of the faces around v within the crease angle of `own` (all of them, or only the

@@ -40,17 +40,9 @@ std::vector<Side> sorted_sides(const Mesh& mesh) {
 // figure, not the tail.
 ChordErrorEstimate neighbourhood_median(const Mesh& mesh, const std::vector<unsigned char>& plane,
                                         const std::vector<double>& raw) {
-  const std::size_t n = mesh.vertices.size();
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const Face& f : mesh.faces) {
-    for (std::int32_t v : f) ++start[static_cast<std::size_t>(v) + 1];
-  }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> around(start[n]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (std::int32_t v : mesh.faces[f]) around[fill[static_cast<std::size_t>(v)]++] = f;
-  }
+  const VertexFaces rows = faces_around_vertices(mesh);
+  const std::vector<std::size_t>& start = rows.start;
+  const std::vector<std::size_t>& around = rows.faces;
   ChordErrorEstimate out;
   out.sagitta_mm.assign(raw.size(), 0.0);
   std::vector<std::size_t> faces;

@@ -93,7 +93,10 @@ struct IcpReference::SurfaceState {
       // The two are independent: the smooth surface on a second thread when OpenMP may use one (it costs about half
       // the index), joined before either is used. The reference's own normals at smooth vertices, so that the curved
       // surface is the one its normals describe.
-      const auto make_phong = [&] { phong = std::make_unique<PhongSurface>(mesh, normals, kDefaultCreaseAngleRad, false); };
+      // Lifting only: the rims compare's nearest() needs are not found.
+      const auto make_phong = [&] {
+        phong = std::make_unique<PhongSurface>(mesh, normals, kDefaultCreaseAngleRad, false);
+      };
       std::future<void> beside;
       if (omp_get_max_threads() >= 2) beside = std::async(std::launch::async, make_phong);
       index = std::make_unique<TriangleIndex>(mesh);

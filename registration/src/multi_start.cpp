@@ -12,14 +12,11 @@
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/thin_walls.h"
+#include "symmetry_starts.h"
 
 namespace conform {
 
 namespace {
-
-// The step of the turns probed about a near-axisymmetric reference's axis (symmetry_starts): 15 deg reaches every
-// index of a part with up to 12 equal features round its axis within half their spacing.
-constexpr double kAxialTurnDeg = 15.0;
 
 // sqrt(mean(min(d, cap)^2)) over the points, d the distance to the nearest reference point.
 double truncated_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
@@ -81,46 +78,6 @@ double size_of(const std::vector<Eigen::Vector3d>& points) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : points) box.extend(p);
   return box.diagonal().norm();
-}
-
-// The best pose followed by a turn of the reference about its principal axes through its centroid: half turns about
-// each axis, and about an axis whose two companions spread alike (within `similarity`: a near-axisymmetric part, a
-// flange, a square plate) every kAxialTurnDeg, and half turns about the axes between those companions every
-// kAxialTurnDeg. An n-fold part (n bolt holes) has its other indices n-fold apart, and a turn within half of that of
-// each reaches it (n <= 12); a square plate is also its own mirror across a diagonal, which only the half turn
-// about that diagonal (not a principal axis) maps onto itself.
-std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
-                                         double similarity) {
-  std::vector<CoarseStart> out;
-  if (reference.size() < 3) return out;
-  const PrincipalAxes axes = principal_axes(reference);
-  const auto add = [&](const Eigen::Vector3d& axis, double degrees, const std::string& about) {
-    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-    turn.linear() = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
-    turn.translation() = axes.centroid - turn.linear() * axes.centroid;
-    out.push_back(
-        {best.label + " turned " + std::to_string(static_cast<int>(degrees)) + " deg about " + about, turn * best.T_probe});
-  };
-  const auto name = [](int k) { return std::to_string(k + 1); };
-  for (int k = 0; k < 3; ++k) {
-    add(axes.axes.col(k), 180.0, "reference axis " + name(k));
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double u = axes.variances(i), v = axes.variances(j);
-    if (std::abs(u - v) > similarity * std::max(u, v)) continue;
-    for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
-      if (std::abs(degrees - 180.0) > 1.0) {
-        add(axes.axes.col(k), degrees > 180.0 ? degrees - 360.0 : degrees, "reference axis " + name(k));
-      }
-    }
-    for (double degrees = kAxialTurnDeg; degrees < 179.0; degrees += kAxialTurnDeg) {
-      if (std::abs(degrees - 90.0) <= 1.0) continue;  // reference axis j, above
-      const double a = degrees * M_PI / 180.0;
-      add(std::cos(a) * axes.axes.col(i) + std::sin(a) * axes.axes.col(j), 180.0,
-          "the axis " + std::to_string(static_cast<int>(degrees)) + " deg from reference axis " + name(i) +
-              " towards " + name(j));
-    }
-  }
-  return out;
 }
 
 // f(i) for every i < n, one i a thread. An exception must not leave a parallel region: the first in index order is
@@ -404,7 +361,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
     // not any start happened to land there (a partial scan of a symmetric plate: every FPFH run may agree).
     const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
-    probe_all(symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
+    probe_all(detail::symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
   }
   const Eigen::Vector3d centre =
       std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /

@@ -50,6 +50,15 @@ Eigen::Isometry3d transform_of(const nlohmann::json& j) {
   return Eigen::Isometry3d(T);
 }
 
+// How far align's pose (its JSON) is from the truth: the turn between them, deg, and the displacement of `at`, mm.
+struct PoseError {
+  double deg = 0.0, mm = 0.0;
+};
+PoseError pose_error(const nlohmann::json& j, const Eigen::Isometry3d& truth, const Eigen::Vector3d& at) {
+  const Eigen::Isometry3d error = truth.inverse() * transform_of(j);
+  return {Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI, (error * at - at).norm()};
+}
+
 struct Worst {
   double plane_mm = 0.0, fillet_mm = 0.0;
   std::size_t planes = 0, fillets = 0;
@@ -197,10 +206,7 @@ TEST(CadSurface, AStepPartFarFromItsScanCoarseAligns) {
                                                       dir.file("block.step"), "--init", init, "--json"});
     ASSERT_EQ(r.exit_code, 0) << init << r.err << r.out;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    const Eigen::Isometry3d error = T_ref_scan.inverse() * transform_of(j);
-    const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
-    const Eigen::Vector3d centre(30, 20, 10);
-    const double translation_mm = (error * centre - centre).norm();
+    const auto [rotation_deg, translation_mm] = pose_error(j, T_ref_scan, Eigen::Vector3d(30, 20, 10));
     std::printf("--init %s against the STEP: %.5f deg, %.5f mm at the part, trust %s: %s\n", init, rotation_deg,
                 translation_mm, j["trust"].get<std::string>().c_str(), j["verdict"]["reasons"].dump().c_str());
     EXPECT_LT(rotation_deg, 0.005) << init;
@@ -275,10 +281,7 @@ TEST(CadSurface, AFlangeStartedOneBoltHoleOffFindsItsIndex) {
                                                       dir.file("flange.step"), "--init", "none", "--json"});
     ASSERT_NE(r.exit_code, 2) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    const Eigen::Isometry3d error = T_ref_scan.inverse() * transform_of(j);
-    const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
-    const Eigen::Vector3d rim(100, 0, 20);
-    const double rim_mm = (error * rim - rim).norm();
+    const auto [rotation_deg, rim_mm] = pose_error(j, T_ref_scan, Eigen::Vector3d(100, 0, 20));
     std::printf("flange started %.0f deg off: %.4f deg, %.4f mm at the rim, exit %d, start '%s': %s\n", start_deg,
                 rotation_deg, rim_mm, r.exit_code, j["start"].get<std::string>().c_str(),
                 j["verdict"]["summary"].get<std::string>().c_str());
@@ -315,10 +318,7 @@ TEST(CadSurface, ASquarePlateIsNotReturnedAtItsMirrorPose) {
                                                         dir.file("plate.step"), "--init", "fpfh", "--json"});
       ASSERT_NE(r.exit_code, 2) << r.err;
       const nlohmann::json j = nlohmann::json::parse(r.out);
-      const Eigen::Isometry3d error = T_ref_scan.inverse() * transform_of(j);
-      const double rotation_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
-      const Eigen::Vector3d corner(100, 100, 10);
-      const double corner_mm = (error * corner - corner).norm();
+      const auto [rotation_deg, corner_mm] = pose_error(j, T_ref_scan, Eigen::Vector3d(100, 100, 10));
       const bool right = rotation_deg < 0.05 && corner_mm < 0.05;
       std::printf("%s plate, frame %d: %.4f deg, %.4f mm at a corner, exit %d: %s\n", marked ? "marked" : "square",
                   frame, rotation_deg, corner_mm, r.exit_code, j["verdict"]["summary"].get<std::string>().c_str());

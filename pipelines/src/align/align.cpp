@@ -187,13 +187,18 @@ void place_coarsely(const std::vector<Eigen::Vector3d>& scan, const IcpReference
   result.coarse = coarse_align(scan, surface ? *surface : reference, coarse);
   const MultiStartResult& ranking = result.coarse.ranking;
   result.started_from = given ? given_start_choice(ranking) : ranking.best;
-  const bool kept = given && (result.started_from < 0 || result.started_from == 0);
-  const StartReport* from = kept ? nullptr : &ranking.starts[static_cast<std::size_t>(result.started_from)];
-  result.T_start = kept ? Eigen::Isometry3d::Identity() : given ? from->T_probe : result.coarse.T_ref_scan;
-  result.start = kept ? std::string("identity") : given ? from->label : result.coarse.winner;
-  if (given && !kept) {
+  if (!given) {
+    result.T_start = result.coarse.T_ref_scan;
+    result.start = result.coarse.winner;
+  } else if (result.started_from > 0) {  // a turn of the user's start
+    const StartReport& from = ranking.starts[static_cast<std::size_t>(result.started_from)];
+    result.T_start = from.T_probe;
+    result.start = from.label;
     result.warnings.push_back("the start given fits worse than '" + result.start +
                               "' (the reference is near-symmetric): fine ICP started there");
+  } else {  // the user's own
+    result.T_start = Eigen::Isometry3d::Identity();
+    result.start = "identity";
   }
   if (ranking.ambiguous) {
     const StartReport& best = ranking.starts[static_cast<std::size_t>(ranking.best)];

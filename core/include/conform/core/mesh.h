@@ -35,6 +35,14 @@ double surface_area(const Mesh& mesh);
 // Per-vertex unit normals: the area-weighted mean of the adjacent faces' normals (zero for isolated vertices).
 std::vector<Eigen::Vector3d> vertex_normals_from_faces(const Mesh& mesh);
 
+// The faces around each vertex, in compressed rows: those of vertex v are faces[start[v]] .. faces[start[v + 1] - 1],
+// ascending. The faces' indices must be in range (check_consistent).
+struct VertexFaces {
+  std::vector<std::size_t> start;  // vertices + 1 entries
+  std::vector<std::size_t> faces;
+};
+VertexFaces faces_around_vertices(const Mesh& mesh);
+
 // The mesh's vertices (and their normals, if any) as a float cloud.
 Cloud to_cloud(const Mesh& mesh);
 // A cloud as a mesh without faces (vertices in double).

@@ -1,0 +1,53 @@
+#include "symmetry_starts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Geometry>
+
+namespace conform::detail {
+
+namespace {
+
+// The step of the turns probed about a near-axisymmetric reference's axis (symmetry_starts): 15 deg reaches every
+// index of a part with up to 12 equal features round its axis within half their spacing.
+constexpr double kAxialTurnDeg = 15.0;
+
+}  // namespace
+
+std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+                                         double similarity) {
+  std::vector<CoarseStart> out;
+  if (reference.size() < 3) return out;
+  const PrincipalAxes axes = principal_axes(reference);
+  const auto add = [&](const Eigen::Vector3d& axis, double degrees, const std::string& about) {
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.linear() = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+    turn.translation() = axes.centroid - turn.linear() * axes.centroid;
+    out.push_back({best.label + " turned " + std::to_string(static_cast<int>(degrees)) + " deg about " + about,
+                   turn * best.T_probe});
+  };
+  const auto name = [](int k) { return std::to_string(k + 1); };
+  for (int k = 0; k < 3; ++k) {
+    add(axes.axes.col(k), 180.0, "reference axis " + name(k));
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double u = axes.variances(i), v = axes.variances(j);
+    if (std::abs(u - v) > similarity * std::max(u, v)) continue;
+    for (double degrees = kAxialTurnDeg; degrees < 359.0; degrees += kAxialTurnDeg) {
+      if (std::abs(degrees - 180.0) > 1.0) {
+        add(axes.axes.col(k), degrees > 180.0 ? degrees - 360.0 : degrees, "reference axis " + name(k));
+      }
+    }
+    for (double degrees = kAxialTurnDeg; degrees < 179.0; degrees += kAxialTurnDeg) {
+      if (std::abs(degrees - 90.0) <= 1.0) continue;  // reference axis j: its half turn is one of the principal ones
+      const double a = degrees * M_PI / 180.0;
+      add(std::cos(a) * axes.axes.col(i) + std::sin(a) * axes.axes.col(j), 180.0,
+          "the axis " + std::to_string(static_cast<int>(degrees)) + " deg from reference axis " + name(i) +
+              " towards " + name(j));
+    }
+  }
+  return out;
+}
+
+}  // namespace conform::detail
