@@ -88,6 +88,16 @@ TEST(Mesh, DegenerateFaceHasZeroNormal) {
   EXPECT_EQ(face_area(mesh, 0), 0.0);
 }
 
+// Two triangles sharing the edge 1-2 and a vertex no face uses: each vertex lists its faces, ascending.
+TEST(Mesh, FacesAroundEachVertex) {
+  Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {5, 5, 5}};
+  mesh.faces = {{0, 1, 2}, {1, 3, 2}};
+  const VertexFaces rows = faces_around_vertices(mesh);
+  EXPECT_EQ(rows.start, (std::vector<std::size_t>{0, 1, 3, 5, 6, 6}));
+  EXPECT_EQ(rows.faces, (std::vector<std::size_t>{0, 0, 1, 0, 1, 1}));
+}
+
 TEST(Mesh, ConsistencyCheckNamesTheProblem) {
   Mesh mesh = unit_right_triangle();
   mesh.faces.push_back({0, 1, 7});
