@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -131,23 +132,37 @@ std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, cons
 // `few` points; where its ICP lands decides, not the start itself: a scan a wall off is often turned a few degrees as
 // well, and the start's own share is near 0), the wall_probes best by inlier share within share_margin of
 // `best_share` (the best pose's on the same points): none when the right pose was already found.
-std::vector<CoarseStart> screened_wall_starts(const std::vector<CoarseStart>& shifted,
-                                              const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
-                                              const MultiStartOptions& options, double reach, double best_share) {
+// With `apart` (slides: many shifts land on one pose), a start is kept only where its quick probe lands apart from
+// those of the starts kept before it.
+std::vector<CoarseStart> screened_wall_starts(
+    const std::vector<CoarseStart>& shifted, const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
+    const MultiStartOptions& options, double reach, double best_share,
+    const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& apart = nullptr) {
   std::vector<double> share(shifted.size(), -1.0);
+  std::vector<Eigen::Isometry3d> landed(shifted.size(), Eigen::Isometry3d::Identity());
   for_each_in_parallel(shifted.size(), [&](std::size_t i) {
     IcpOptions quick = options.probe;
     quick.progress = nullptr;
     quick.max_iterations = options.wall_screen_iterations;
     const IcpResult r = icp(few, reference, shifted[i].T_ref_scan, quick);
     share[i] = share_of(inliers(few, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
+    landed[i] = r.T_ref_scan;
   });
   std::vector<std::size_t> order(shifted.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
   std::vector<CoarseStart> kept;
-  for (std::size_t k = 0; k < std::min(options.wall_probes, shifted.size()); ++k) {
-    if (share[order[k]] >= (1.0 - options.share_margin) * best_share) kept.push_back(shifted[order[k]]);
+  std::vector<std::size_t> kept_index;
+  for (std::size_t k = 0; k < shifted.size() && kept.size() < options.wall_probes; ++k) {
+    const std::size_t i = order[k];
+    if (!apart && k >= options.wall_probes) break;
+    if (share[i] < (1.0 - options.share_margin) * best_share) break;
+    if (apart && std::any_of(kept_index.begin(), kept_index.end(),
+                             [&](std::size_t j) { return !apart(landed[j], landed[i]); })) {
+      continue;
+    }
+    kept.push_back(shifted[i]);
+    kept_index.push_back(i);
   }
   return kept;
 }
@@ -276,6 +291,8 @@ bool MultiStartOptions::IsValid(std::string* error) const {
   } else if (!(separation_z >= 0.0) || !std::isfinite(separation_z) || !(separation_ratio >= 1.0) ||
              !std::isfinite(separation_ratio) || !(separation_min_share >= 0.0 && separation_min_share <= 1.0)) {
     why = "separation_z must be finite and >= 0, separation_ratio finite and >= 1, separation_min_share in [0, 1]";
+  } else if (!(slide_step_share >= 0.0) || !std::isfinite(slide_step_share)) {
+    why = "slide_step_share must be finite and >= 0 (0: slides not probed)";
   } else if (!(free_step_share >= 0.0) || !std::isfinite(free_step_share)) {
     why = "free_step_share must be finite and >= 0";
   } else if (!(symmetry_similarity >= 0.0 && symmetry_similarity < 1.0)) {
@@ -399,6 +416,21 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
           share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
       const std::vector<CoarseStart> kept =
           screened_wall_starts(wall_starts(bases, walls), few, reference, options, reach, best_share);
+      if (!kept.empty()) probe_all(kept);
+    }
+  }
+  if (by_share && options.slide_step_share > 0.0) {
+    const StartReport best_so_far = result.starts[static_cast<std::size_t>(result.best)];
+    const std::vector<CoarseStart> slid =
+        detail::slide_starts(best_so_far, reference.points(), subset,
+                             std::max(options.slide_step_share * size_mm, 3.0 * options.inlier_distance_mm),
+                             options.slide_max_per_axis);
+    if (!slid.empty()) {
+      const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
+      const double best_share =
+          share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
+      const std::vector<CoarseStart> kept =
+          screened_wall_starts(slid, few, reference, options, reach, best_share, apart);
       if (!kept.empty()) probe_all(kept);
     }
   }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -13,6 +15,8 @@ namespace {
 // The step of the turns probed about a near-axisymmetric reference's axis (symmetry_starts): 15 deg reaches every
 // index of a part with up to 12 equal features round its axis within half their spacing.
 constexpr double kAxialTurnDeg = 15.0;
+// slide_starts: an axis along which the reference is at least this many times as long as the scan.
+constexpr double kSlideLength = 1.5;
 
 }  // namespace
 
@@ -45,6 +49,39 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
       add(std::cos(a) * axes.axes.col(i) + std::sin(a) * axes.axes.col(j), 180.0,
           "the axis " + std::to_string(static_cast<int>(degrees)) + " deg from reference axis " + name(i) +
               " towards " + name(j));
+    }
+  }
+  return out;
+}
+
+std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+                                      const std::vector<Eigen::Vector3d>& scan, double step_mm,
+                                      std::size_t max_per_axis) {
+  std::vector<CoarseStart> out;
+  if (reference.size() < 3 || scan.empty() || !(step_mm > 0.0) || max_per_axis == 0) return out;
+  const PrincipalAxes axes = principal_axes(reference);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d axis = axes.axes.col(k);
+    const auto extent = [&](const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Eigen::Vector3d& p : points) {
+        const double t = axis.dot(T * p);
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+      }
+      return std::pair<double, double>(lo, hi);
+    };
+    const auto [ref_lo, ref_hi] = extent(reference, Eigen::Isometry3d::Identity());
+    const auto [scan_lo, scan_hi] = extent(scan, best.T_probe);
+    if (ref_hi - ref_lo < kSlideLength * (scan_hi - scan_lo)) continue;
+    // Shifts s with the scan's extent within the reference's: ref_lo - scan_lo <= s <= ref_hi - scan_hi.
+    const double from = ref_lo - scan_lo, to = ref_hi - scan_hi;
+    const double step = std::max(step_mm, (to - from) / static_cast<double>(max_per_axis));
+    for (double s = std::ceil(from / step) * step; s <= to; s += step) {
+      if (std::abs(s) < 0.5 * step) continue;
+      out.push_back({best.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
+                         " mm along reference axis " + std::to_string(k + 1),
+                     Eigen::Translation3d(s * axis) * best.T_probe});
     }
   }
   return out;

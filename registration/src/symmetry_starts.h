@@ -2,6 +2,7 @@
 // The reference's candidate symmetries as coarse starts (rank_starts, multi_start.h): the best pose turned so that a
 // symmetric reference, or the part of it the scan covers, would look the same, for the ambiguity test to find.
 
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,5 +20,15 @@ namespace conform::detail {
 // (not a principal axis) maps onto itself. Labelled "<best> turned N deg about ...". None for fewer than 3 points.
 std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
                                          double similarity);
+
+// The best pose slid along each principal axis of the reference that is longer than the scan at that pose by at
+// least half (a stretch of a long profile or tube): the scan's points moved by every multiple of the step that keeps
+// their extent along the axis within the reference's, at most max_per_axis (the step widened to fit), labelled
+// "<best> slid N mm along reference axis k". A long part whose features are the only thing that fixes the stretch's
+// place (holes along a profile) has nothing for a rotation-invariant descriptor to tell apart along it, and ICP
+// finds a feature only within about its size. None for fewer than 3 points or a step that is not positive.
+std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+                                      const std::vector<Eigen::Vector3d>& scan, double step_mm,
+                                      std::size_t max_per_axis);
 
 }  // namespace conform::detail

@@ -34,6 +34,12 @@ TopoDS_Shape ribbed_plate();
 // plate's middle) maps it onto itself, its top onto its bottom. `marked`: one more hole, R10 at (50, 25), off the
 // diagonal, so that it is not symmetric.
 TopoDS_Shape square_plate(bool marked);
+// An L-profile 2000 mm long along x: a web 12 mm thick (y 0..12) and 200 mm high (z), a flange 80 x 12 mm on its top
+// (y 0..80, z 188..200). Through the web, R30 holes at z = 90 and R25 scallops at its toe (z = 0). `unique`: holes at
+// x = 250, 700, 1250, 1750, scallops at 500, 960, 1500 and an R9 pin hole through the flange at (850, 30), so that
+// each stretch of 500 mm is told apart from another; else holes every 500 mm from 250 and scallops every 500 mm from
+// 500, so that a stretch clear of the ends fits as well 500 mm along.
+TopoDS_Shape long_profile(bool unique);
 // A welded bracket: a base plate 120 x 80 x 10 mm (z up), an upright plate 120 x 10 x 80 mm on it along y = 0..10,
 // two gussets 8 mm thick at x = 20 and x = 92 (right triangles of 50 mm legs in the corner between the plates), a
 // fillet weld with 6 mm legs along the inside corner, and two 12 mm holes through the base at (30, 55) and (90, 55).

@@ -60,6 +60,14 @@ struct MultiStartOptions {
   std::size_t wall_screen_points = 500;
   int wall_screen_iterations = 5;
 
+  // With inlier scoring: along each principal axis of the reference at least 1.5 times as long as the scan there,
+  // the best pose (after the symmetry probes) is also slid by every multiple of slide_step_share of the scan's size
+  // (at least 3 inlier distances; at most slide_max_per_axis shifts, the step widened to fit) within the reference's
+  // extent, labelled "... slid N mm along reference axis k", screened and probed as the wall shifts are. A stretch of
+  // a long profile is fixed along it only by features (holes, notches) that no start may reach. 0: not probed.
+  double slide_step_share = 0.04;
+  std::size_t slide_max_per_axis = 64;
+
   // With inlier scoring: the best's loose directions (its probe's predicted std above the probe's free tolerance, or
   // held) are tested for symmetry: the best pose moved along each, both ways, by free_step_share of the scan's
   // size (at least 3 inlier distances), keeps its fit (not told apart from the unmoved pose, as above). Those that
