@@ -391,25 +391,30 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   const auto apart = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
     return rotation_angle(b * a.inverse()) > far_rad || (b * centre - a * centre).norm() > far_mm;
   };
+  // The best distinct poses so far, best first (at most wall_bases).
+  const auto best_distinct = [&]() {
+    std::vector<std::size_t> order(result.starts.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return better(result.starts[a], result.starts[b]); });
+    std::vector<StartReport> bases;
+    for (const std::size_t i : order) {
+      const StartReport& s = result.starts[i];
+      const bool seen = std::any_of(bases.begin(), bases.end(),
+                                    [&](const StartReport& b) { return !apart(b.T_probe, s.T_probe); });
+      if (!seen) bases.push_back(s);
+      if (bases.size() == options.wall_bases) break;
+    }
+    return bases;
+  };
   if (by_share && options.wall_max_thickness_mm > 0.0 && options.wall_bases > 0) {
     ThinWallOptions wall_options;
     wall_options.max_thickness_mm = options.wall_max_thickness_mm;
     const std::vector<ThinWall> walls = thin_walls(reference, wall_options);
     if (!walls.empty()) {
-      // The best distinct poses so far, best first: a scan shifted through a wall may also be turned by a
-      // near-symmetry, and the turn's probe is not always the best.
-      std::vector<std::size_t> order(result.starts.size());
-      std::iota(order.begin(), order.end(), std::size_t{0});
-      std::stable_sort(order.begin(), order.end(),
-                       [&](std::size_t a, std::size_t b) { return better(result.starts[a], result.starts[b]); });
-      std::vector<StartReport> bases;
-      for (const std::size_t i : order) {
-        const StartReport& s = result.starts[i];
-        const bool seen = std::any_of(bases.begin(), bases.end(),
-                                      [&](const StartReport& b) { return !apart(b.T_probe, s.T_probe); });
-        if (!seen) bases.push_back(s);
-        if (bases.size() == options.wall_bases) break;
-      }
+      // A scan shifted through a wall may also be turned by a near-symmetry, and the turn's probe is not always the
+      // best.
+      const std::vector<StartReport> bases = best_distinct();
       const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
       const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
       const double best_share =
@@ -420,11 +425,16 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
   }
   if (by_share && options.slide_step_share > 0.0) {
+    // From the best distinct poses: a scan turned end for end may fit its wrong place as well as the right one.
     const StartReport best_so_far = result.starts[static_cast<std::size_t>(result.best)];
-    const std::vector<CoarseStart> slid =
-        detail::slide_starts(best_so_far, reference.points(), subset,
-                             std::max(options.slide_step_share * size_mm, 3.0 * options.inlier_distance_mm),
-                             options.slide_max_per_axis);
+    std::vector<CoarseStart> slid;
+    for (const StartReport& base : best_distinct()) {
+      const std::vector<CoarseStart> more =
+          detail::slide_starts(base, reference.points(), subset,
+                               std::max(options.slide_step_share * size_mm, 3.0 * options.inlier_distance_mm),
+                               options.slide_max_shifts);
+      slid.insert(slid.end(), more.begin(), more.end());
+    }
     if (!slid.empty()) {
       const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
       const double best_share =

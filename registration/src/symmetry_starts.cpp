@@ -15,8 +15,11 @@ namespace {
 // The step of the turns probed about a near-axisymmetric reference's axis (symmetry_starts): 15 deg reaches every
 // index of a part with up to 12 equal features round its axis within half their spacing.
 constexpr double kAxialTurnDeg = 15.0;
-// slide_starts: an axis along which the reference is at least this many times as long as the scan.
+// slide_starts: the reference along its longest axis at least this many times as long as the scan,
 constexpr double kSlideLength = 1.5;
+// and this many times as long as it is wide (a profile, a tube, a bar; not a plate, where a stretch would need a
+// search in two directions).
+constexpr double kLongPart = 3.0;
 
 }  // namespace
 
@@ -56,33 +59,34 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
 
 std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
                                       const std::vector<Eigen::Vector3d>& scan, double step_mm,
-                                      std::size_t max_per_axis) {
+                                      std::size_t max_shifts) {
   std::vector<CoarseStart> out;
-  if (reference.size() < 3 || scan.empty() || !(step_mm > 0.0) || max_per_axis == 0) return out;
+  if (reference.size() < 3 || scan.empty() || !(step_mm > 0.0) || max_shifts == 0) return out;
   const PrincipalAxes axes = principal_axes(reference);
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d axis = axes.axes.col(k);
-    const auto extent = [&](const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Eigen::Vector3d& p : points) {
-        const double t = axis.dot(T * p);
-        lo = std::min(lo, t);
-        hi = std::max(hi, t);
-      }
-      return std::pair<double, double>(lo, hi);
-    };
-    const auto [ref_lo, ref_hi] = extent(reference, Eigen::Isometry3d::Identity());
-    const auto [scan_lo, scan_hi] = extent(scan, best.T_probe);
-    if (ref_hi - ref_lo < kSlideLength * (scan_hi - scan_lo)) continue;
-    // Shifts s with the scan's extent within the reference's: ref_lo - scan_lo <= s <= ref_hi - scan_hi.
-    const double from = ref_lo - scan_lo, to = ref_hi - scan_hi;
-    const double step = std::max(step_mm, (to - from) / static_cast<double>(max_per_axis));
-    for (double s = std::ceil(from / step) * step; s <= to; s += step) {
-      if (std::abs(s) < 0.5 * step) continue;
-      out.push_back({best.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
-                         " mm along reference axis " + std::to_string(k + 1),
-                     Eigen::Translation3d(s * axis) * best.T_probe});
+  // The extent of `points` moved by T along axis k of the reference.
+  const auto extent = [&](const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T, int k) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Eigen::Vector3d& p : points) {
+      const double t = axes.axes.col(k).dot(T * p);
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
     }
+    return std::pair<double, double>(lo, hi);
+  };
+  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+  const auto [ref_lo, ref_hi] = extent(reference, identity, 0);
+  const auto [across_lo, across_hi] = extent(reference, identity, 1);
+  const auto [scan_lo, scan_hi] = extent(scan, best.T_probe, 0);
+  if (ref_hi - ref_lo < kLongPart * (across_hi - across_lo)) return out;
+  if (ref_hi - ref_lo < kSlideLength * (scan_hi - scan_lo)) return out;
+  // Shifts s with the scan's extent within the reference's: ref_lo - scan_lo <= s <= ref_hi - scan_hi.
+  const double from = ref_lo - scan_lo, to = ref_hi - scan_hi;
+  const double step = std::max(step_mm, (to - from) / static_cast<double>(max_shifts));
+  for (double s = std::ceil(from / step) * step; s <= to; s += step) {
+    if (std::abs(s) < 0.5 * step) continue;
+    out.push_back({best.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
+                       " mm along reference axis 1",
+                   Eigen::Translation3d(s * axes.axes.col(0)) * best.T_probe});
   }
   return out;
 }

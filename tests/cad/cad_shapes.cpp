@@ -136,9 +136,10 @@ TopoDS_Shape long_profile(bool unique) {
   const auto drill = [&](const gp_Pnt& from, const gp_Dir& along, double radius) {
     part = BRepAlgoAPI_Cut(part, BRepPrimAPI_MakeCylinder(gp_Ax2(from, along), radius, 30.0).Shape()).Shape();
   };
-  const std::vector<double> holes = unique ? std::vector<double>{250, 700, 1250, 1750}
-                                           : std::vector<double>{250, 750, 1250, 1750};
-  const std::vector<double> scallops = unique ? std::vector<double>{500, 960, 1500} : std::vector<double>{500, 1000, 1500};
+  const std::vector<double> holes =
+      unique ? std::vector<double>{250, 700, 1250, 1750} : std::vector<double>{250, 750, 1250, 1750};
+  const std::vector<double> scallops =
+      unique ? std::vector<double>{500, 960, 1500} : std::vector<double>{500, 1000, 1500};
   for (const double x : holes) drill(gp_Pnt(x, -5, 90), gp::DY(), 30.0);
   for (const double x : scallops) drill(gp_Pnt(x, -5, 0), gp::DY(), 25.0);
   if (unique) drill(gp_Pnt(850, 30, 180), gp::DZ(), 9.0);

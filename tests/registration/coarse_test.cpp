@@ -131,6 +131,56 @@ std::vector<Eigen::Vector3d> bumped_plate(const std::vector<Eigen::Vector2d>& bu
   return out;
 }
 
+// A strip 60 mm wide along x from x_from to x_to (1 mm grid at phase `offset`) with cosine bumps 5 mm high, radius
+// 15 mm, at `bumps`.
+std::vector<Eigen::Vector3d> bumped_strip(const std::vector<Eigen::Vector2d>& bumps, double x_from, double x_to,
+                                          double offset) {
+  std::vector<Eigen::Vector3d> out;
+  for (double x = x_from + offset; x <= x_to; x += 1.0) {
+    for (double y = -30.0 + offset; y <= 30.0; y += 1.0) {
+      double z = 0.0;
+      for (const Eigen::Vector2d& b : bumps) {
+        const double d = (Eigen::Vector2d(x, y) - b).norm();
+        if (d < 15.0) z += 2.5 * (1.0 + std::cos(M_PI * d / 15.0));
+      }
+      out.emplace_back(x, y, z);
+    }
+  }
+  return out;
+}
+
+// A 300 mm stretch of a 1 m strip whose bumps (unevenly spaced, off its middle line so that a half turn does not
+// fit them) alone place it along the strip, started 200 mm off
+// along it: no probe reaches a bump that far, so without slides the best stays there; slid along the reference's
+// long axis (slide_step_share), the best is the right place, and the places where one bump of two fits are told
+// apart from it.
+TEST(MultiStart, AStretchOfALongPartIsSlidToItsPlace) {
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 10.0;
+  options.inlier_distance_mm = 0.1;
+  const std::vector<Eigen::Vector2d> bumps = {{-370.0, 0.0}, {-90.0, 12.0}, {60.0, 12.0}, {320.0, -12.0}};
+  Mesh reference_mesh;
+  reference_mesh.vertices = bumped_strip(bumps, -500.0, 500.0, 0.0);
+  const IcpReference reference(reference_mesh);
+  const std::vector<Eigen::Vector3d> scan = bumped_strip(bumps, -150.0, 150.0, 0.5);  // the bumps at -90 and 60
+  Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
+  off.translation() = Eigen::Vector3d(200.0, 0.0, 0.0);
+  for (const double step : {0.0, 0.04}) {
+    options.slide_step_share = step;
+    const MultiStartResult r = rank_starts(scan, reference, {{"200 mm off", off}}, options);
+    ASSERT_GE(r.best, 0);
+    const StartReport& best = r.starts[static_cast<std::size_t>(r.best)];
+    const double error_mm = best.T_probe.translation().norm();
+    if (step > 0.0) {
+      EXPECT_LT(error_mm, 0.5) << best.label;
+      EXPECT_NE(best.label.find("slid"), std::string::npos) << best.label;
+      EXPECT_FALSE(r.ambiguous);
+    } else {
+      EXPECT_GT(error_mm, 100.0) << best.label;
+    }
+  }
+}
+
 // Two starts, the truth and the truth turned 180 degrees about the plate's normal: with one bump the turn fits all
 // but the bump's ~2 % (close within the 10 % margin), and only one side has inliers of its own: told apart. With
 // two bumps the turn is a symmetry: as many inliers either way, ambiguous.

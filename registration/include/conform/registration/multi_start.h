@@ -60,13 +60,15 @@ struct MultiStartOptions {
   std::size_t wall_screen_points = 500;
   int wall_screen_iterations = 5;
 
-  // With inlier scoring: along each principal axis of the reference at least 1.5 times as long as the scan there,
-  // the best pose (after the symmetry probes) is also slid by every multiple of slide_step_share of the scan's size
-  // (at least 3 inlier distances; at most slide_max_per_axis shifts, the step widened to fit) within the reference's
-  // extent, labelled "... slid N mm along reference axis k", screened and probed as the wall shifts are. A stretch of
-  // a long profile is fixed along it only by features (holes, notches) that no start may reach. 0: not probed.
+  // With inlier scoring, against a reference at least 3 times as long as it is wide (a profile, a tube, a bar) and
+  // half as long again as the scan: the best distinct poses (at most wall_bases, after the wall shifts) are also slid
+  // along its longest principal axis by every multiple of slide_step_share of the scan's size (at least 3 inlier
+  // distances; at most slide_max_shifts, the step widened to fit) within its extent, labelled "... slid N mm along
+  // reference axis 1", screened as the wall shifts are; of the wall_probes best, those whose quick probes land apart
+  // are probed as every start is. A stretch of a long profile is fixed along it only by features (holes, notches)
+  // that no start may reach. 0: not probed.
   double slide_step_share = 0.04;
-  std::size_t slide_max_per_axis = 64;
+  std::size_t slide_max_shifts = 64;
 
   // With inlier scoring: the best's loose directions (its probe's predicted std above the probe's free tolerance, or
   // held) are tested for symmetry: the best pose moved along each, both ways, by free_step_share of the scan's
