@@ -115,33 +115,17 @@ TEST(MultiStart, InlierShareRanksAndFlagsTheMirror) {
               r.starts[static_cast<std::size_t>(r.best)].inlier_share, 0.01);
 }
 
-// A 120 x 80 mm plate (1 mm grid at phase `offset`) with cosine bumps 5 mm high, radius 6 mm, at `bumps`.
-std::vector<Eigen::Vector3d> bumped_plate(const std::vector<Eigen::Vector2d>& bumps, double offset) {
-  std::vector<Eigen::Vector3d> out;
-  for (double x = -60.0 + offset; x <= 60.0; x += 1.0) {
-    for (double y = -40.0 + offset; y <= 40.0; y += 1.0) {
-      double z = 0.0;
-      for (const Eigen::Vector2d& b : bumps) {
-        const double d = (Eigen::Vector2d(x, y) - b).norm();
-        if (d < 6.0) z += 2.5 * (1.0 + std::cos(M_PI * d / 6.0));
-      }
-      out.emplace_back(x, y, z);
-    }
-  }
-  return out;
-}
-
-// A strip 60 mm wide along x from x_from to x_to (1 mm grid at phase `offset`) with cosine bumps 5 mm high, radius
-// 15 mm, at `bumps`.
-std::vector<Eigen::Vector3d> bumped_strip(const std::vector<Eigen::Vector2d>& bumps, double x_from, double x_to,
-                                          double offset) {
+// A grid (1 mm, at phase `offset`) over x_from..x_to and -y_half..y_half with cosine bumps 5 mm high of `radius`
+// at `bumps`.
+std::vector<Eigen::Vector3d> bumped_grid(const std::vector<Eigen::Vector2d>& bumps, double x_from, double x_to,
+                                         double y_half, double radius, double offset) {
   std::vector<Eigen::Vector3d> out;
   for (double x = x_from + offset; x <= x_to; x += 1.0) {
-    for (double y = -30.0 + offset; y <= 30.0; y += 1.0) {
+    for (double y = -y_half + offset; y <= y_half; y += 1.0) {
       double z = 0.0;
       for (const Eigen::Vector2d& b : bumps) {
         const double d = (Eigen::Vector2d(x, y) - b).norm();
-        if (d < 15.0) z += 2.5 * (1.0 + std::cos(M_PI * d / 15.0));
+        if (d < radius) z += 2.5 * (1.0 + std::cos(M_PI * d / radius));
       }
       out.emplace_back(x, y, z);
     }
@@ -149,20 +133,25 @@ std::vector<Eigen::Vector3d> bumped_strip(const std::vector<Eigen::Vector2d>& bu
   return out;
 }
 
-// A 300 mm stretch of a 1 m strip whose bumps (unevenly spaced, off its middle line so that a half turn does not
-// fit them) alone place it along the strip, started 200 mm off
-// along it: no probe reaches a bump that far, so without slides the best stays there; slid along the reference's
-// long axis (slide_step_share), the best is the right place, and the places where one bump of two fits are told
-// apart from it.
+// A 120 x 80 mm plate with bumps of radius 6 mm.
+std::vector<Eigen::Vector3d> bumped_plate(const std::vector<Eigen::Vector2d>& bumps, double offset) {
+  return bumped_grid(bumps, -60.0, 60.0, 40.0, 6.0, offset);
+}
+
+// A 300 mm stretch of a 1 m strip, 60 mm wide, whose bumps (radius 15 mm, unevenly spaced, off its middle line so
+// that a half turn does not fit them) alone place it along the strip, started 200 mm off along it: no probe reaches a
+// bump that far, so without slides the best stays there; slid along the reference's long axis (slide_step_share),
+// the best is the right place, and the places where one bump of two fits are told apart from it.
 TEST(MultiStart, AStretchOfALongPartIsSlidToItsPlace) {
   MultiStartOptions options;
   options.probe.max_correspondence_distance_mm = 10.0;
   options.inlier_distance_mm = 0.1;
   const std::vector<Eigen::Vector2d> bumps = {{-370.0, 0.0}, {-90.0, 12.0}, {60.0, 12.0}, {320.0, -12.0}};
   Mesh reference_mesh;
-  reference_mesh.vertices = bumped_strip(bumps, -500.0, 500.0, 0.0);
+  reference_mesh.vertices = bumped_grid(bumps, -500.0, 500.0, 30.0, 15.0, 0.0);
   const IcpReference reference(reference_mesh);
-  const std::vector<Eigen::Vector3d> scan = bumped_strip(bumps, -150.0, 150.0, 0.5);  // the bumps at -90 and 60
+  // The bumps at -90 and 60.
+  const std::vector<Eigen::Vector3d> scan = bumped_grid(bumps, -150.0, 150.0, 30.0, 15.0, 0.5);
   Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
   off.translation() = Eigen::Vector3d(200.0, 0.0, 0.0);
   for (const double step : {0.0, 0.04}) {
