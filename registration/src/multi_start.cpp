@@ -134,7 +134,7 @@ std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, cons
 // `best_share` (the best pose's on the same points): none when the right pose was already found.
 // With `apart` (slides: many shifts land on one pose), a start is kept only where its quick probe lands apart from
 // those of the starts kept before it.
-std::vector<CoarseStart> screened_wall_starts(
+std::vector<CoarseStart> screened_starts(
     const std::vector<CoarseStart>& shifted, const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
     const MultiStartOptions& options, double reach, double best_share,
     const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& apart = nullptr) {
@@ -155,7 +155,6 @@ std::vector<CoarseStart> screened_wall_starts(
   std::vector<std::size_t> kept_index;
   for (std::size_t k = 0; k < shifted.size() && kept.size() < options.wall_probes; ++k) {
     const std::size_t i = order[k];
-    if (!apart && k >= options.wall_probes) break;
     if (share[i] < (1.0 - options.share_margin) * best_share) break;
     if (apart && std::any_of(kept_index.begin(), kept_index.end(),
                              [&](std::size_t j) { return !apart(landed[j], landed[i]); })) {
@@ -184,57 +183,6 @@ Eigen::Isometry3d screw_motion(const Vector6d& x, const Eigen::Vector3d& c, doub
   m.translation() = a - m.linear() * a + (k.dot(v) / angle) * angle * k;
   return m;
 }
-
-// The components of d along the (reference-frame) free translations, seen through `R_scan_ref`, taken out.
-Eigen::Vector3d without_free(Eigen::Vector3d d, const std::vector<Eigen::Vector3d>& translations,
-                             const Eigen::Matrix3d& R_scan_ref) {
-  for (const Eigen::Vector3d& t : translations) {
-    const Eigen::Vector3d u = R_scan_ref * t;
-    d -= d.dot(u) * u;
-  }
-  return d;
-}
-
-}  // namespace
-
-bool same_up_to_free(const Eigen::Isometry3d& T_a, const Eigen::Isometry3d& T_b,
-                     const std::vector<DegenerateDirection>& free_motions, const Eigen::Vector3d& scan_centre,
-                     double max_rad, double max_mm) {
-  std::vector<Eigen::Vector3d> translations;
-  std::vector<const DegenerateDirection*> rotations;
-  for (const DegenerateDirection& d : free_motions) {
-    if (d.kind == MotionKind::kRotation) {
-      rotations.push_back(&d);
-      continue;
-    }
-    Eigen::Vector3d t = d.direction;  // Gram-Schmidt, so that taking them out one by one is a projection
-    for (const Eigen::Vector3d& u : translations) t -= t.dot(u) * u;
-    if (t.norm() > 1e-6) translations.push_back(t.normalized());
-  }
-  const Eigen::Matrix3d R_a = T_a.linear().transpose();  // scan <- reference
-  const Eigen::Isometry3d A = T_a.inverse(), B = T_b.inverse();
-  if (rotations.empty()) {
-    const Eigen::Isometry3d between = T_b * T_a.inverse();
-    const Eigen::Vector3d moved = T_b * scan_centre - T_a * scan_centre;
-    return rotation_angle(between) <= max_rad &&
-           without_free(moved, translations, Eigen::Matrix3d::Identity()).norm() <= max_mm;
-  }
-  const Eigen::Vector3d& k = rotations.front()->direction;
-  const Eigen::Vector3d& point = rotations.front()->point;
-  if (rotations.size() > 1) {
-    return without_free(A * point - B * point, translations, R_a).norm() <= max_mm;
-  }
-  const Eigen::Vector3d d_a = A.linear() * k, d_b = B.linear() * k;
-  if (std::acos(std::min(1.0, std::abs(d_a.dot(d_b)))) > max_rad) return false;
-  const Eigen::Vector3d p_a = A * point, p_b = B * point;
-  const Eigen::Vector3d q_a = p_a + (scan_centre - p_a).dot(d_a) * d_a;
-  const Eigen::Vector3d q_b = p_b + (scan_centre - p_b).dot(d_b) * d_b;
-  Eigen::Vector3d gap = without_free(q_a - q_b, translations, R_a);
-  gap -= gap.dot(d_a) * d_a;
-  return gap.norm() <= max_mm;
-}
-
-namespace {
 
 // The best's loose (or held) directions along which a step of step_mm (at the probe points' RMS radius) both ways
 // keeps the fit: not told apart from the unmoved pose by the inlier test. Their motions, reference frame.
@@ -407,6 +355,8 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
     return bases;
   };
+  // The probe points the shifted starts (walls, slides) are screened on.
+  const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
   if (by_share && options.wall_max_thickness_mm > 0.0 && options.wall_bases > 0) {
     ThinWallOptions wall_options;
     wall_options.max_thickness_mm = options.wall_max_thickness_mm;
@@ -415,32 +365,24 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       // A scan shifted through a wall may also be turned by a near-symmetry, and the turn's probe is not always the
       // best.
       const std::vector<StartReport> bases = best_distinct();
-      const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
       const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
       const double best_share =
           share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
       const std::vector<CoarseStart> kept =
-          screened_wall_starts(wall_starts(bases, walls), few, reference, options, reach, best_share);
+          screened_starts(wall_starts(bases, walls), few, reference, options, reach, best_share);
       if (!kept.empty()) probe_all(kept);
     }
   }
   if (by_share && options.slide_step_share > 0.0) {
     // From the best distinct poses: a scan turned end for end may fit its wrong place as well as the right one.
-    const StartReport best_so_far = result.starts[static_cast<std::size_t>(result.best)];
-    std::vector<CoarseStart> slid;
-    for (const StartReport& base : best_distinct()) {
-      const std::vector<CoarseStart> more =
-          detail::slide_starts(base, reference.points(), subset,
-                               std::max(options.slide_step_share * size_mm, 3.0 * options.inlier_distance_mm),
-                               options.slide_max_shifts);
-      slid.insert(slid.end(), more.begin(), more.end());
-    }
+    const std::vector<CoarseStart> slid = detail::slide_starts(
+        best_distinct(), reference.points(), subset,
+        std::max(options.slide_step_share * size_mm, 3.0 * options.inlier_distance_mm), options.slide_max_shifts);
     if (!slid.empty()) {
-      const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
+      const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
       const double best_share =
           share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
-      const std::vector<CoarseStart> kept =
-          screened_wall_starts(slid, few, reference, options, reach, best_share, apart);
+      const std::vector<CoarseStart> kept = screened_starts(slid, few, reference, options, reach, best_share, apart);
       if (!kept.empty()) probe_all(kept);
     }
   }

@@ -57,7 +57,8 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
   return out;
 }
 
-std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+std::vector<CoarseStart> slide_starts(const std::vector<StartReport>& bases,
+                                      const std::vector<Eigen::Vector3d>& reference,
                                       const std::vector<Eigen::Vector3d>& scan, double step_mm,
                                       std::size_t max_shifts) {
   std::vector<CoarseStart> out;
@@ -76,17 +77,19 @@ std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector
   const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
   const auto [ref_lo, ref_hi] = extent(reference, identity, 0);
   const auto [across_lo, across_hi] = extent(reference, identity, 1);
-  const auto [scan_lo, scan_hi] = extent(scan, best.T_probe, 0);
   if (ref_hi - ref_lo < kLongPart * (across_hi - across_lo)) return out;
-  if (ref_hi - ref_lo < kSlideLength * (scan_hi - scan_lo)) return out;
-  // Shifts s with the scan's extent within the reference's: ref_lo - scan_lo <= s <= ref_hi - scan_hi.
-  const double from = ref_lo - scan_lo, to = ref_hi - scan_hi;
-  const double step = std::max(step_mm, (to - from) / static_cast<double>(max_shifts));
-  for (double s = std::ceil(from / step) * step; s <= to; s += step) {
-    if (std::abs(s) < 0.5 * step) continue;
-    out.push_back({best.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
-                       " mm along reference axis 1",
-                   Eigen::Translation3d(s * axes.axes.col(0)) * best.T_probe});
+  for (const StartReport& base : bases) {
+    const auto [scan_lo, scan_hi] = extent(scan, base.T_probe, 0);
+    if (ref_hi - ref_lo < kSlideLength * (scan_hi - scan_lo)) continue;
+    // Shifts s with the scan's extent within the reference's: ref_lo - scan_lo <= s <= ref_hi - scan_hi.
+    const double from = ref_lo - scan_lo, to = ref_hi - scan_hi;
+    const double step = std::max(step_mm, (to - from) / static_cast<double>(max_shifts));
+    for (double s = std::ceil(from / step) * step; s <= to; s += step) {
+      if (std::abs(s) < 0.5 * step) continue;
+      out.push_back({base.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
+                         " mm along reference axis 1",
+                     Eigen::Translation3d(s * axes.axes.col(0)) * base.T_probe});
+    }
   }
   return out;
 }

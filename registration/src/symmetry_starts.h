@@ -21,14 +21,15 @@ namespace conform::detail {
 std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
                                          double similarity);
 
-// The best pose slid along the reference's longest principal axis, where the reference is at least three times as
+// Each base pose slid along the reference's longest principal axis, where the reference is at least three times as
 // long as it is wide and half as long again as the scan at that pose (a stretch of a long profile, tube or bar): by
 // every multiple of the step that keeps the scan's extent along the axis within the reference's, at most max_shifts
-// (the step widened to fit), labelled "<best> slid N mm along reference axis 1". A long part whose features are the
-// only thing that fixes the stretch's place (holes along a profile) has nothing for a rotation-invariant descriptor
-// to tell apart along it, and ICP finds a feature only within about its size. None for fewer than 3 points or a step
-// that is not positive.
-std::vector<CoarseStart> slide_starts(const StartReport& best, const std::vector<Eigen::Vector3d>& reference,
+// a base (the step widened to fit), labelled "<base> slid N mm along reference axis 1". A long part whose features
+// are the only thing that fixes the stretch's place (holes along a profile) has nothing for a rotation-invariant
+// descriptor to tell apart along it, and ICP finds a feature only within about its size. None for fewer than 3
+// points or a step that is not positive.
+std::vector<CoarseStart> slide_starts(const std::vector<StartReport>& bases,
+                                      const std::vector<Eigen::Vector3d>& reference,
                                       const std::vector<Eigen::Vector3d>& scan, double step_mm, std::size_t max_shifts);
 
 }  // namespace conform::detail

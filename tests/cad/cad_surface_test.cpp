@@ -59,6 +59,14 @@ PoseError pose_error(const nlohmann::json& j, const Eigen::Isometry3d& truth, co
   return {Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI, (error * at - at).norm()};
 }
 
+// A scan frame: `degrees` about `axis`, then shifted by `shift` (T_ref_scan).
+Eigen::Isometry3d scan_frame(double degrees, const Eigen::Vector3d& axis, const Eigen::Vector3d& shift) {
+  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+  T_ref_scan.rotate(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
+  T_ref_scan.translation() = shift;
+  return T_ref_scan;
+}
+
 struct Worst {
   double plane_mm = 0.0, fillet_mm = 0.0;
   std::size_t planes = 0, fillets = 0;
@@ -190,9 +198,8 @@ TEST(CadSurface, AStepPartFarFromItsScanCoarseAligns) {
   test::TempDir dir;
   const TopoDS_Shape block = test::filleted_block();
   test::write_cad(block, dir.file("block.step"), CadFormat::kStep, "MM");
-  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-  T_ref_scan.rotate(Eigen::AngleAxisd(17.0 * M_PI / 180.0, Eigen::Vector3d(1, -2, 3).normalized()));
-  T_ref_scan.translation() = Eigen::Vector3d(30, -36, 10);  // 48 mm
+  const Eigen::Isometry3d T_ref_scan =
+      scan_frame(17.0, Eigen::Vector3d(1, -2, 3), Eigen::Vector3d(30, -36, 10));  // 48 mm
   const test::SurfaceSample sample = test::sample_surface(block, 30000, 0.02, 3);
   Mesh scan;
   for (const Eigen::Vector3d& p : sample.points) {
@@ -223,9 +230,7 @@ TEST(CadSurfaceMatrix, DefaultFineFitOnAMachinedPlateLandsOnThePose) {
   test::TempDir dir;
   const TopoDS_Shape plate = test::ribbed_plate();
   test::write_cad(plate, dir.file("plate.step"), CadFormat::kStep, "MM");
-  Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-  T_ref_scan.rotate(Eigen::AngleAxisd(0.5 * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
-  T_ref_scan.translation() = Eigen::Vector3d(0.3, -0.2, 0.15);
+  const Eigen::Isometry3d T_ref_scan = scan_frame(0.5, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.3, -0.2, 0.15));
   for (std::uint64_t seed : {1, 2, 3}) {
     const test::SurfaceSample sample = test::sample_surface(plate, 40000, 0.03, seed);
     Mesh scan;
@@ -268,8 +273,7 @@ TEST(CadSurface, AFlangeStartedOneBoltHoleOffFindsItsIndex) {
   test::write_cad(flange, dir.file("flange.step"), CadFormat::kStep, "MM");
   const test::SurfaceSample sample = test::sample_surface(flange, 40000, 0.02, 5);
   for (double start_deg : {58.0, 2.0}) {
-    Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-    T_ref_scan.rotate(Eigen::AngleAxisd(start_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+    const Eigen::Isometry3d T_ref_scan = scan_frame(start_deg, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
     Mesh scan;
     for (std::size_t i = 0; i < sample.points.size(); ++i) {
       if (sample.normals[i].z() > -0.5) scan.vertices.push_back(T_ref_scan.inverse() * sample.points[i]);
@@ -306,9 +310,8 @@ TEST(CadSurface, ASquarePlateIsNotReturnedAtItsMirrorPose) {
     const Eigen::Vector3d axes[] = {Eigen::Vector3d(1, -2, 3), Eigen::Vector3d(-3, 1, 1), Eigen::Vector3d(0.2, 0.4, -1)};
     const double degrees[] = {17.0, 120.0, 250.0};
     for (int frame = 0; frame < 3; ++frame) {
-      Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-      T_ref_scan.rotate(Eigen::AngleAxisd(degrees[frame] * M_PI / 180.0, axes[frame].normalized()));
-      T_ref_scan.translation() = Eigen::Vector3d(30.0 * frame - 20.0, 40.0, -25.0);
+      const Eigen::Isometry3d T_ref_scan =
+          scan_frame(degrees[frame], axes[frame], Eigen::Vector3d(30.0 * frame - 20.0, 40.0, -25.0));
       std::vector<Eigen::Vector3d> scan;
       for (std::size_t i = 0; i < sample.points.size(); ++i) {
         if (sample.normals[i].z() > -0.5) scan.push_back(T_ref_scan.inverse() * sample.points[i]);
@@ -332,8 +335,8 @@ TEST(CadSurface, ASquarePlateIsNotReturnedAtItsMirrorPose) {
 
 // A 530 mm stretch of a 2 m L-profile, scanned from the web's side: nothing rotation-invariant tells one place along
 // it from another, and ICP finds a hole only within about its size, so the FPFH starts alone never placed it (six of
-// six frames 58-471 mm off, refused). The best start slid along the profile (MultiStartOptions::slide_step_share)
-// finds it (two frames). With holes every 500 mm the stretch fits as well 500 mm along: never accepted there.
+// six frames 58-471 mm off, refused). The best starts slid along the profile (MultiStartOptions::slide_step_share)
+// find it (two frames). With holes every 500 mm the stretch fits as well 500 mm along: never accepted there.
 TEST(CadSurface, AStretchOfALongProfileIsPlacedAlongIt) {
   test::TempDir dir;
   for (const bool unique : {true, false}) {
@@ -344,9 +347,8 @@ TEST(CadSurface, AStretchOfALongProfileIsPlacedAlongIt) {
     const Eigen::Vector3d axes[] = {Eigen::Vector3d(1, -2, 3), Eigen::Vector3d(-3, 1, 1)};
     const double degrees[] = {40.0, 150.0};
     for (int frame = 0; frame < (unique ? 2 : 1); ++frame) {
-      Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
-      T_ref_scan.rotate(Eigen::AngleAxisd(degrees[frame] * M_PI / 180.0, axes[frame].normalized()));
-      T_ref_scan.translation() = Eigen::Vector3d(300.0 * frame - 100.0, 40.0, -25.0);
+      const Eigen::Isometry3d T_ref_scan =
+          scan_frame(degrees[frame], axes[frame], Eigen::Vector3d(300.0 * frame - 100.0, 40.0, -25.0));
       const double from = 620.0 - 80.0 * frame;
       std::vector<Eigen::Vector3d> scan;
       for (std::size_t i = 0; i < sample.points.size(); ++i) {
