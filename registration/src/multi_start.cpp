@@ -13,6 +13,7 @@
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/thin_walls.h"
+#include "scan_coverage.h"
 #include "symmetry_starts.h"
 
 namespace conform {
@@ -73,6 +74,20 @@ bool separated(std::size_t best_only, std::size_t other_only, std::size_t n, con
 bool better(const StartReport& a, const StartReport& b) {
   if (a.inlier_share != b.inlier_share) return a.inlier_share > b.inlier_share;
   return a.score_mm < b.score_mm;
+}
+
+// A start's figures against the best (set by the competition in rank_starts) back to none.
+void clear_judgement(StartReport& s) {
+  const StartReport fresh;
+  s.best_only_share = fresh.best_only_share;
+  s.only_share = fresh.only_share;
+  s.separated = fresh.separated;
+  s.gap_mm2 = fresh.gap_mm2;
+  s.best_gap_mm2 = fresh.best_gap_mm2;
+  s.separated_by_gaps = fresh.separated_by_gaps;
+  s.same_up_to_free = fresh.same_up_to_free;
+  s.same_when_settled = fresh.same_when_settled;
+  s.ties_best = fresh.ties_best;
 }
 
 double size_of(const std::vector<Eigen::Vector3d>& points) {
@@ -254,6 +269,8 @@ bool MultiStartOptions::IsValid(std::string* error) const {
     why = "wall_max_thickness_mm must be finite and >= 0 (0: thin walls not probed)";
   } else if (wall_screen_points < probe.min_correspondences || wall_screen_iterations < 1) {
     why = "wall_screen_points must be at least probe.min_correspondences and wall_screen_iterations >= 1";
+  } else if (gap_min_points > 0 && (gap_scan_points < 9 || !(gap_min_area >= 0.0) || !std::isfinite(gap_min_area))) {
+    why = "gap_scan_points must be at least 9 and gap_min_area finite and >= 0 when gap_min_points > 0";
   }
   if (why.empty()) return true;
   if (error != nullptr) *error = why;
@@ -386,13 +403,30 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       if (!kept.empty()) probe_all(kept);
     }
   }
-  const StartReport best = result.starts[static_cast<std::size_t>(result.best)];
-  if (by_share && options.free_step_share > 0.0) {
+  // The best's free motions (free_step_share), for the competition below.
+  const auto find_free_motions = [&]() {
+    result.free_motions.clear();
+    if (!by_share || !(options.free_step_share > 0.0)) return;
     const auto b = static_cast<std::size_t>(result.best);
     const double step_mm = std::max(options.free_step_share * size_mm, 3.0 * options.inlier_distance_mm);
-    result.free_motions =
-        symmetric_motions(subset, reference, best.T_probe, constraints[b], masks[b], step_mm, reach, options);
-  }
+    result.free_motions = symmetric_motions(subset, reference, result.starts[b].T_probe, constraints[b], masks[b],
+                                            step_mm, reach, options);
+  };
+  // The reference's side of the test (gap_min_points): whether the scan's holes tell pose `here` apart from `there`
+  // (here has a region of gaps that there has not), its regions' areas set on `other` (here: other's pose).
+  std::optional<detail::GapComparison> holes;
+  const auto holes_tell = [&](const Eigen::Isometry3d& here, const Eigen::Isometry3d& there, StartReport* other) {
+    if (!holes) holes.emplace(scan, reference, options.gap_scan_points, 3.0 * options.inlier_distance_mm);
+    const detail::GapComparison::Regions r = holes->compare(here, there);
+    if (other != nullptr) {
+      other->gap_mm2 = static_cast<double>(r.a_only) * holes->area_per_point_mm2();
+      other->best_gap_mm2 = static_cast<double>(r.b_only) * holes->area_per_point_mm2();
+    }
+    const double s = holes->scan_spacing_mm();
+    return r.a_only >= options.gap_min_points &&
+           static_cast<double>(r.a_only) * holes->area_per_point_mm2() >= options.gap_min_area * s * s &&
+           static_cast<double>(r.a_only) >= options.separation_ratio * static_cast<double>(r.b_only);
+  };
   // Whether start j (as `o`, its probe's figures and inlier mask `m`) competes with the best (`b`, mask `bm`): close
   // in score, elsewhere, not along a free motion, not told apart. The flags are set on start j.
   const auto competes = [&](std::size_t j, const StartReport& b, const std::vector<char>& bm, const StartReport& o,
@@ -415,30 +449,64 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       other.best_only_share = static_cast<double>(best_only) / static_cast<double>(subset.size());
       other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
       other.separated = separated(best_only, other_only, subset.size(), options);
+      if (!other.separated && options.gap_min_points > 0) {
+        other.separated_by_gaps = holes_tell(o.T_probe, b.T_probe, &other);
+        other.separated = other.separated_by_gaps;
+      }
       if (other.separated) return false;
     }
     return true;
   };
-  const auto b = static_cast<std::size_t>(result.best);
-  std::optional<Probe> best_settled;  // the best's probe run on, once, when a start competes with it as probed
-  for (std::size_t j = 0; j < result.starts.size(); ++j) {
-    if (j == b || !competes(j, best, masks[b], result.starts[j], masks[j])) continue;
-    if (options.settle_iterations > 0) {
-      // Both run on to convergence: the same minimum, or elsewhere and judged again there (the reported figures
-      // stay the probes'; the coarse pose is the best's probe, finished by the coarse stage).
-      if (!best_settled) best_settled = settled(b);
-      const Probe other = settled(j);
-      if (!apart(best_settled->report.T_probe, other.report.T_probe)) {
-        result.starts[j].same_when_settled = true;
-        continue;
+  // Every start against the best: which compete with it (ties_best), the runner-up, ambiguous.
+  const auto judge = [&]() {
+    find_free_motions();
+    const auto b = static_cast<std::size_t>(result.best);
+    const StartReport best = result.starts[b];
+    std::optional<Probe> best_settled;  // the best's probe run on, once, when a start competes with it as probed
+    for (std::size_t j = 0; j < result.starts.size(); ++j) {
+      if (j == b || !competes(j, best, masks[b], result.starts[j], masks[j])) continue;
+      if (options.settle_iterations > 0) {
+        // Both run on to convergence: the same minimum, or elsewhere and judged again there (the reported figures
+        // stay the probes'; the coarse pose is the best's probe, finished by the coarse stage).
+        if (!best_settled) best_settled = settled(b);
+        const Probe other = settled(j);
+        if (!apart(best_settled->report.T_probe, other.report.T_probe)) {
+          result.starts[j].same_when_settled = true;
+          continue;
+        }
+        if (!competes(j, best_settled->report, best_settled->mask, other.report, other.mask)) continue;
       }
-      if (!competes(j, best_settled->report, best_settled->mask, other.report, other.mask)) continue;
+      StartReport& other = result.starts[j];
+      other.ties_best = true;
+      if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
+        result.ambiguous = true;
+        result.runner_up = static_cast<int>(j);
+      }
     }
-    StartReport& other = result.starts[j];
-    other.ties_best = true;
-    if (result.runner_up < 0 || better(other, result.starts[static_cast<std::size_t>(result.runner_up)])) {
-      result.ambiguous = true;
-      result.runner_up = static_cast<int>(j);
+  };
+  judge();
+  // A tie the scan's holes settle the other way: the best's pose has a region of gaps that a tied start's has not
+  // (the scan's hole over solid reference at the best, over the reference's own hole at the other), and the points
+  // inlying at one of the two only are as many either way within chance (2 standard deviations of a fair coin: the
+  // best won by a coin toss). That start is the best, judged again. A start the best beat by more (a worse fit, whose
+  // scan does not lie on the surface closely enough to leave gaps) is not.
+  if (result.ambiguous && by_share && options.gap_min_points > 0) {
+    const Eigen::Isometry3d T_best = result.starts[static_cast<std::size_t>(result.best)].T_probe;
+    const auto n = static_cast<double>(subset.size());
+    int swap = -1;
+    for (std::size_t j = 0; j < result.starts.size(); ++j) {
+      const StartReport& s = result.starts[j];
+      const double best_only = s.best_only_share * n, only = s.only_share * n;
+      const bool coin_toss = best_only - only <= 2.0 * std::sqrt(best_only + only);
+      if (!s.ties_best || !coin_toss || !holes_tell(T_best, s.T_probe, nullptr)) continue;
+      if (swap < 0 || better(s, result.starts[static_cast<std::size_t>(swap)])) swap = static_cast<int>(j);
+    }
+    if (swap >= 0) {
+      for (StartReport& s : result.starts) clear_judgement(s);
+      result.ambiguous = false;
+      result.runner_up = -1;
+      result.best = swap;
+      judge();
     }
   }
   return result;

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "conform/core/error.h"
 #include "conform/core/nearest_neighbors.h"
 #include "conform/datasets/ribbed_plate.h"
@@ -118,10 +121,15 @@ TEST(MultiStart, InlierShareRanksAndFlagsTheMirror) {
 // A grid (1 mm, at phase `offset`) over x_from..x_to and -y_half..y_half with cosine bumps 5 mm high of `radius`
 // at `bumps`.
 std::vector<Eigen::Vector3d> bumped_grid(const std::vector<Eigen::Vector2d>& bumps, double x_from, double x_to,
-                                         double y_half, double radius, double offset) {
+                                         double y_half, double radius, double offset,
+                                         const std::vector<Eigen::Vector3d>& holes = {}) {
   std::vector<Eigen::Vector3d> out;
   for (double x = x_from + offset; x <= x_to; x += 1.0) {
     for (double y = -y_half + offset; y <= y_half; y += 1.0) {
+      const bool in_hole = std::any_of(holes.begin(), holes.end(), [&](const Eigen::Vector3d& h) {
+        return std::hypot(x - h.x(), y - h.y()) < h.z();
+      });
+      if (in_hole) continue;
       double z = 0.0;
       for (const Eigen::Vector2d& b : bumps) {
         const double d = (Eigen::Vector2d(x, y) - b).norm();
@@ -167,6 +175,45 @@ TEST(MultiStart, AStretchOfALongPartIsSlidToItsPlace) {
     } else {
       EXPECT_GT(error_mm, 100.0) << best.label;
     }
+  }
+}
+
+// A 120 mm stretch of a strip whose bumps repeat every 100 mm, with a hole (radius 8 mm, between two bumps) that the
+// reference has at one place only. 100 mm along, every scan point finds surface as well (the reference's hole lies
+// beyond the scan there): only the scan's hole, over solid reference there, tells the places apart. Given in either
+// order, the right place is the best and the other told apart by the hole; without that test, ambiguous.
+TEST(MultiStart, AHoleInTheScanTellsRepeatedPlacesApart) {
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 10.0;
+  options.inlier_distance_mm = 0.1;
+  options.probe_reference_symmetry = false;
+  options.slide_step_share = 0.0;
+  const std::vector<Eigen::Vector2d> bumps = {{-300.0, 0.0}, {-200.0, 0.0}, {-100.0, 0.0}, {0.0, 0.0},
+                                              {100.0, 0.0},  {200.0, 0.0},  {300.0, 0.0}};
+  const std::vector<Eigen::Vector3d> hole = {{50.0, 10.0, 8.0}};
+  Mesh reference_mesh;
+  reference_mesh.vertices = bumped_grid(bumps, -300.0, 300.0, 30.0, 15.0, 0.0, hole);
+  const IcpReference reference(reference_mesh);
+  const std::vector<Eigen::Vector3d> scan = bumped_grid(bumps, -10.0, 110.0, 30.0, 15.0, 0.5, hole);
+  Eigen::Isometry3d along = Eigen::Isometry3d::Identity();
+  along.translation() = Eigen::Vector3d(100.0, 0.0, 0.0);
+  const CoarseStart right{"right", Eigen::Isometry3d::Identity()}, elsewhere{"100 mm along", along};
+  for (const bool right_first : {true, false}) {
+    const std::vector<CoarseStart> starts =
+        right_first ? std::vector<CoarseStart>{right, elsewhere} : std::vector<CoarseStart>{elsewhere, right};
+    options.gap_min_points = 10;
+    const MultiStartResult r = rank_starts(scan, reference, starts, options);
+    ASSERT_GE(r.best, 0);
+    const StartReport& best = r.starts[static_cast<std::size_t>(r.best)];
+    EXPECT_EQ(best.label, "right") << right_first;
+    EXPECT_LT(best.T_probe.translation().norm(), 0.5) << right_first;
+    EXPECT_FALSE(r.ambiguous) << right_first;
+    const StartReport& other = r.starts[static_cast<std::size_t>(1 - r.best)];
+    EXPECT_TRUE(other.separated_by_gaps) << right_first;
+    EXPECT_GT(other.gap_mm2, 40.0) << right_first;  // pi (8 - 2.5)^2 = 95 mm2 of the hole's inside
+    EXPECT_LT(other.best_gap_mm2, 10.0) << right_first;
+    options.gap_min_points = 0;
+    EXPECT_TRUE(rank_starts(scan, reference, starts, options).ambiguous) << right_first;
   }
 }
 

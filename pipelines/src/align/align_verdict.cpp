@@ -163,7 +163,14 @@ AlignVerdict judge_alignment(const std::vector<Eigen::Vector3d>& scan, const Icp
     for (const StartReport& other : ranking.starts) {
       if (other.separated && (closest == nullptr || other.inlier_share > closest->inlier_share)) closest = &other;
     }
-    if (closest != nullptr) {
+    if (closest != nullptr && closest->separated_by_gaps) {
+      check.push_back("coarse start '" + closest->label + "' fits almost as well at a pose " +
+                      how_far(best, *closest, centre) +
+                      format(" (inlier share %.3f against %.3f)", closest->inlier_share, best.inlier_share) +
+                      format("; only a hole in the scan tells them apart: it lies over %.0f mm2 of reference "
+                             "surface there (against %.0f mm2 here)",
+                             closest->gap_mm2, closest->best_gap_mm2));
+    } else if (closest != nullptr) {
       check.push_back("coarse start '" + closest->label + "' fits almost as well at a pose " +
                       how_far(best, *closest, centre) +
                       format(" (inlier share %.3f against %.3f); only %.1f%% of ", closest->inlier_share,

@@ -36,6 +36,20 @@ struct MultiStartOptions {
   double separation_z = 4.0;
   double separation_ratio = 3.0;
   double separation_min_share = 0.005;
+  // With inlier scoring, a close start the scan's points do not tell apart is told apart by the reference's: where
+  // the scan has a hole (a pin hole, a notch the part really has) over solid reference surface at the start's pose
+  // and over a hole of the reference at the best's (scan_coverage.h). Told apart when the largest region of
+  // reference points inside the scan's footprint with no scan point on them, at the start's pose only (not at the
+  // same place of the scan at the best's), holds at least gap_min_points points, covers at least gap_min_area
+  // squared scan spacings (the rims of a through hole seen at a slant leave regions of about 2), and holds
+  // separation_ratio times as many points as the largest at the best's pose only. On gap_scan_points of the scan's
+  // points (evenly strided; its spacing the square root of their area per point). 0 points: not tested, the default:
+  // on a panel scanned from a coarse tessellation it told apart the one rival that had refused two poses 2 mm off
+  // along a direction the fine fit's std claims to 0.04 mm (docs/measurements/align.md, 2026-11-29, gaps); 10 tells
+  // a profile's stretch from its twin by a pin hole.
+  std::size_t gap_min_points = 0;
+  double gap_min_area = 8.0;
+  std::size_t gap_scan_points = 50000;
 
   // The best start is also probed turned by the reference's candidate symmetries (half turns about its principal
   // axes through its centroid; turns every 15 deg about an axis whose other two spread within symmetry_similarity of
@@ -102,6 +116,12 @@ struct StartReport {
   double best_only_share = 0.0;
   double only_share = 0.0;
   bool separated = false;
+  // Told apart by the reference's side (MultiStartOptions::gap_min_points): the largest region of reference surface
+  // inside the scan with no scan point on it at this start's pose only, and at the best's pose only (mm^2, from the
+  // reference points' count and spacing); 0 when not tested.
+  double gap_mm2 = 0.0;
+  double best_gap_mm2 = 0.0;
+  bool separated_by_gaps = false;
   bool same_up_to_free = false;  // differs from the best only along MultiStartResult::free_motions
   // A close start elsewhere whose probe, and the best's, run on to convergence (MultiStartOptions::settle_iterations)
   // meet: the probes had stopped short on the way to one minimum, not at two.
