@@ -217,6 +217,51 @@ TEST(MultiStart, AHoleInTheScanTellsRepeatedPlacesApart) {
   }
 }
 
+// A 2 mm sheet (two faces of a 200 x 100 mm plate) scanned from the top, started on either face. The inlier distance
+// (0.3 mm, as a large part's size gives) once made poses 3 mm apart the same answer, so the far face won or lost by
+// the share's last digits, unreported; a pose half a thin wall away is another answer now: the two faces fit alike,
+// and the result is ambiguous.
+TEST(MultiStart, APoseAWallOffIsAnotherAnswer) {
+  MultiStartOptions options;
+  options.probe.max_correspondence_distance_mm = 10.0;
+  options.inlier_distance_mm = 0.3;
+  options.wall_max_thickness_mm = 5.0;
+  options.probe_reference_symmetry = false;
+  // Each face a grid of 1 mm squares, two triangles each, facing out (the top up, the bottom down).
+  Mesh reference_mesh;
+  for (const double z : {0.0, -2.0}) {
+    const auto first = static_cast<int>(reference_mesh.vertices.size());
+    for (int i = 0; i <= 200; ++i) {
+      for (int j = 0; j <= 100; ++j) reference_mesh.vertices.emplace_back(i, j, z);
+    }
+    const auto at = [&](int i, int j) { return first + i * 101 + j; };
+    for (int i = 0; i < 200; ++i) {
+      for (int j = 0; j < 100; ++j) {
+        if (z == 0.0) {
+          reference_mesh.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+          reference_mesh.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        } else {
+          reference_mesh.faces.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+          reference_mesh.faces.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+        }
+      }
+    }
+  }
+  const IcpReference reference(reference_mesh);
+  std::vector<Eigen::Vector3d> scan;
+  for (double x = 20.25; x <= 180.0; x += 1.0) {
+    for (double y = 10.25; y <= 90.0; y += 1.0) scan.emplace_back(x, y, 0.0);
+  }
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation() = Eigen::Vector3d(0.0, 0.0, -2.0);
+  const std::vector<CoarseStart> starts = {{"near face", Eigen::Isometry3d::Identity()}, {"far face", far}};
+  const MultiStartResult r = rank_starts(scan, reference, starts, options);
+  ASSERT_GE(r.best, 0);
+  EXPECT_TRUE(r.ambiguous);
+  options.distinct_mm = 3.0;  // as the old rule had it: 10 inlier distances
+  EXPECT_FALSE(rank_starts(scan, reference, starts, options).ambiguous);
+}
+
 // Two starts, the truth and the truth turned 180 degrees about the plate's normal: with one bump the turn fits all
 // but the bump's ~2 % (close within the 10 % margin), and only one side has inliers of its own: told apart. With
 // two bumps the turn is a symmetry: as many inliers either way, ambiguous.

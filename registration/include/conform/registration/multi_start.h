@@ -27,7 +27,9 @@ struct MultiStartOptions {
   // distinct_mm away) whose share is at least (1 - share_margin) times the best's makes the result ambiguous.
   double share_margin = 0.1;
   double distinct_deg = 3.0;
-  double distinct_mm = 0.0;  // 0: 10 times inlier_distance_mm, at least 1% of the scan's size
+  // 0: 10 times inlier_distance_mm, at least 1% of the scan's size, at most half the thinnest of the reference's
+  // thin walls (wall_max_thickness_mm): a pose a wall off is another answer.
+  double distinct_mm = 0.0;
   // With inlier scoring, such a close start is still told apart (not ambiguous) when the points that are inliers at
   // the best's pose only outnumber those at its own pose only beyond chance: at least separation_min_share of the
   // probe points, separation_ratio times as many, and more by separation_z standard deviations of a fair coin
@@ -44,9 +46,7 @@ struct MultiStartOptions {
   // squared scan spacings (the rims of a through hole seen at a slant leave regions of about 2), and holds
   // separation_ratio times as many points as the largest at the best's pose only. On gap_scan_points of the scan's
   // points (evenly strided; its spacing the square root of their area per point). 0 points: not tested, the default:
-  // on a panel scanned from a coarse tessellation it told apart the one rival that had refused two poses 2 mm off
-  // along a direction the fine fit's std claims to 0.04 mm (docs/measurements/align.md, 2026-11-29, gaps); 10 tells
-  // a profile's stretch from its twin by a pin hole.
+  // on at 10, a datum part's best fit from a given start came out turned 180 deg (InspectDatums, cause not found).
   std::size_t gap_min_points = 0;
   double gap_min_area = 8.0;
   std::size_t gap_scan_points = 50000;
