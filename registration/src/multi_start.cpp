@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <exception>
 #include <functional>
 #include <numeric>
@@ -114,33 +113,6 @@ void for_each_in_parallel(std::size_t n, const F& f) {
   for (const std::exception_ptr& e : failed) {
     if (e) std::rethrow_exception(e);
   }
-}
-
-// Each base pose shifted through each thin wall: by -t, 0 or +t along each of the wall's normal directions (reference
-// frame), every combination but no shift, labelled "... shifted through a 5.0 mm wall (+1, 0, -1)".
-std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, const std::vector<ThinWall>& walls) {
-  std::vector<CoarseStart> out;
-  for (const StartReport& base : bases) {
-    for (const ThinWall& wall : walls) {
-      const auto m = static_cast<int>(wall.directions.size());
-      int combinations = 1;
-      for (int k = 0; k < m; ++k) combinations *= 3;
-      for (int c = 1; c < combinations; ++c) {  // c in base 3, digit k the step along direction k: 0, +1, -1
-        Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-        std::string steps;
-        for (int k = 0, rest = c; k < m; ++k, rest /= 3) {
-          const int step = rest % 3 == 2 ? -1 : rest % 3;
-          shift += step * wall.thickness_mm * wall.directions[static_cast<std::size_t>(k)];
-          steps += (k > 0 ? ", " : "") + std::string(step > 0 ? "+1" : step < 0 ? "-1" : "0");
-        }
-        char thickness[32];
-        std::snprintf(thickness, sizeof thickness, "%.1f", wall.thickness_mm);
-        out.push_back({base.label + " shifted through a " + thickness + " mm wall (" + steps + ")",
-                       Eigen::Translation3d(shift) * base.T_probe});
-      }
-    }
-  }
-  return out;
 }
 
 // The shifted starts worth a full probe, best first: each screened by a quick probe (wall_screen_iterations steps on
@@ -363,7 +335,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
   // A pose a wall's thickness off (the scan on the far face) is another answer, not the same one within slack: on a
   // 2 mm panel whose inlier distance (from its size) made 6.3 mm the same answer, the far face won by 0.1 % of the
   // share.
-  if (by_share && !(options.distinct_mm > 0.0)) {
+  if (!(options.distinct_mm > 0.0)) {  // walls are looked for only with inlier scoring
     for (const ThinWall& wall : walls) far_mm = std::min(far_mm, 0.5 * wall.thickness_mm);
   }
   const double far_rad = (by_share ? options.distinct_deg : 2.0) * M_PI / 180.0;
@@ -395,7 +367,7 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     const StartReport& best_so_far = result.starts[static_cast<std::size_t>(result.best)];
     const double best_share = share_of(inliers(few, best_so_far.T_probe, reference, options.inlier_distance_mm, reach));
     const std::vector<CoarseStart> kept =
-        screened_starts(wall_starts(bases, walls), few, reference, options, reach, best_share);
+        screened_starts(detail::wall_starts(bases, walls), few, reference, options, reach, best_share);
     if (!kept.empty()) probe_all(kept);
   }
   if (by_share && options.slide_step_share > 0.0) {

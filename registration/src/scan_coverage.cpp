@@ -66,10 +66,10 @@ ScanFootprint::ScanFootprint(const std::vector<Eigen::Vector3d>& scan, std::size
   }
 }
 
-bool ScanFootprint::hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, const Eigen::Vector3d& u, double from,
-                         double to, double sheet_mm) const {
+bool ScanFootprint::hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, const Eigen::Vector3d& u, double to,
+                         double sheet_mm) const {
   const double near = kHit * spacing_mm_;
-  for (double t = from; t <= to;) {
+  for (double t = 0.0; t <= to;) {
     const Eigen::Vector3d x = q + t * u;
     float sq = 0.0f;
     const int j = tree_.nearest(x.cast<float>(), &sq);
@@ -83,7 +83,8 @@ bool ScanFootprint::hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, con
 }
 
 std::vector<Eigen::Vector3d> ScanFootprint::gaps(const IcpReference& reference, const Eigen::Isometry3d& T_ref_scan,
-                                                 double sheet_mm, double link_mm) const {
+                                                 double sheet_mm, double link_mm,
+                                                 double reference_area_mm2) const {
   const std::vector<Eigen::Vector3d>& points = reference.points();
   const std::vector<Eigen::Vector3d>& normals = reference.normals();
   if (normals.size() != points.size() || points.empty()) return {};
@@ -110,7 +111,7 @@ std::vector<Eigen::Vector3d> ScanFootprint::gaps(const IcpReference& reference, 
     const Eigen::Vector3d v = n.cross(u);
     for (int a = 0; a < kDirections; ++a) {
       const double angle = 2.0 * M_PI * a / kDirections;
-      if (!hits(q, n, std::cos(angle) * u + std::sin(angle) * v, 0.0, 2.0 * reach, sheet_mm)) return false;
+      if (!hits(q, n, std::cos(angle) * u + std::sin(angle) * v, 2.0 * reach, sheet_mm)) return false;
     }
     return true;
   };
@@ -124,7 +125,7 @@ std::vector<Eigen::Vector3d> ScanFootprint::gaps(const IcpReference& reference, 
   // About one seed a squared scan spacing (a reference denser than the scan is thinned for the seeds), from every
   // other rim point (their spheres overlap 8-fold).
   const auto thin = static_cast<std::size_t>(
-      std::max(1.0, std::floor(spacing_mm_ * spacing_mm_ / area_per_point(points, reference.tree()))));
+      std::max(1.0, std::floor(spacing_mm_ * spacing_mm_ / reference_area_mm2)));
   for (std::size_t k = 0; k < rim_.size(); k += 2) {
     const Eigen::Vector3d p = T_ref_scan * points_[rim_[k]];
     reference.tree().radius(p.cast<float>(), static_cast<float>(seed_reach), found, sq);
@@ -238,7 +239,8 @@ const std::vector<Eigen::Vector3d>& GapComparison::gaps(const Eigen::Isometry3d&
     }
     if (close) return f.second;
   }
-  found_.emplace_back(T, footprint_->gaps(reference_, T, std::max(sheet_mm_, footprint_->spacing_mm()), link_mm_));
+  found_.emplace_back(
+      T, footprint_->gaps(reference_, T, std::max(sheet_mm_, footprint_->spacing_mm()), link_mm_, area_per_point_));
   return found_.back().second;
 }
 

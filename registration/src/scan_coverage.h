@@ -32,16 +32,18 @@ class ScanFootprint {
   // face the scanner did not face. Each flagged point's position in the scan's frame. Regions are found from seeds
   // (the reference points within 4 spacings of the scan's rim points: a gap's nearest scan point lies on the rim of
   // the empty region round it) and grown through reference points within link_mm of each other.
+  // reference_area_mm2: the reference's area per point (area_per_point), which thins the seeds of a reference denser
+  // than the scan.
   std::vector<Eigen::Vector3d> gaps(const IcpReference& reference, const Eigen::Isometry3d& T_ref_scan,
-                                    double sheet_mm, double link_mm) const;
+                                    double sheet_mm, double link_mm, double reference_area_mm2) const;
 
   double spacing_mm() const { return spacing_mm_; }
   const Eigen::AlignedBox3d& box() const { return box_; }
 
  private:
   // Whether a scan point near the plane through q with normal n is found marching from q along u (unit, in the
-  // plane) from `from` up to `to`.
-  bool hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, const Eigen::Vector3d& u, double from, double to,
+  // plane) up to `to`.
+  bool hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, const Eigen::Vector3d& u, double to,
             double sheet_mm) const;
 
   std::vector<Eigen::Vector3d> points_;

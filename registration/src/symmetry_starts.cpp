@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
@@ -89,6 +90,33 @@ std::vector<CoarseStart> slide_starts(const std::vector<StartReport>& bases,
       out.push_back({base.label + " slid " + std::to_string(static_cast<long>(std::lround(s))) +
                          " mm along reference axis 1",
                      Eigen::Translation3d(s * axes.axes.col(0)) * base.T_probe});
+    }
+  }
+  return out;
+}
+
+// Each base pose shifted through each thin wall: by -t, 0 or +t along each of the wall's normal directions (reference
+// frame), every combination but no shift, labelled "... shifted through a 5.0 mm wall (+1, 0, -1)".
+std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, const std::vector<ThinWall>& walls) {
+  std::vector<CoarseStart> out;
+  for (const StartReport& base : bases) {
+    for (const ThinWall& wall : walls) {
+      const auto m = static_cast<int>(wall.directions.size());
+      int combinations = 1;
+      for (int k = 0; k < m; ++k) combinations *= 3;
+      for (int c = 1; c < combinations; ++c) {  // c in base 3, digit k the step along direction k: 0, +1, -1
+        Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+        std::string steps;
+        for (int k = 0, rest = c; k < m; ++k, rest /= 3) {
+          const int step = rest % 3 == 2 ? -1 : rest % 3;
+          shift += step * wall.thickness_mm * wall.directions[static_cast<std::size_t>(k)];
+          steps += (k > 0 ? ", " : "") + std::string(step > 0 ? "+1" : step < 0 ? "-1" : "0");
+        }
+        char thickness[32];
+        std::snprintf(thickness, sizeof thickness, "%.1f", wall.thickness_mm);
+        out.push_back({base.label + " shifted through a " + thickness + " mm wall (" + steps + ")",
+                       Eigen::Translation3d(shift) * base.T_probe});
+      }
     }
   }
   return out;

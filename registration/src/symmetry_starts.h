@@ -9,6 +9,7 @@
 
 #include "conform/registration/coarse_pca.h"
 #include "conform/registration/multi_start.h"
+#include "conform/registration/thin_walls.h"
 
 namespace conform::detail {
 
@@ -31,5 +32,10 @@ std::vector<CoarseStart> symmetry_starts(const StartReport& best, const std::vec
 std::vector<CoarseStart> slide_starts(const std::vector<StartReport>& bases,
                                       const std::vector<Eigen::Vector3d>& reference,
                                       const std::vector<Eigen::Vector3d>& scan, double step_mm, std::size_t max_shifts);
+
+// Each base pose shifted through each thin wall: by -t, 0 or +t along each of the wall's normal directions (reference
+// frame), every combination but no shift (up to 26 a wall and base), labelled "<base> shifted through a 5.0 mm wall
+// (+1, 0, -1)". A scan of one side of a plate shifted by its thickness lies on the far face and fits almost as well.
+std::vector<CoarseStart> wall_starts(const std::vector<StartReport>& bases, const std::vector<ThinWall>& walls);
 
 }  // namespace conform::detail

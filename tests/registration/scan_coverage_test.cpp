@@ -46,7 +46,8 @@ std::size_t largest_gap(const std::vector<Eigen::Vector3d>& scan, const IcpRefer
                         std::vector<Eigen::Vector3d>* gaps = nullptr) {
   const detail::ScanFootprint footprint(scan, 50000);
   const double link = 2.0 * footprint.spacing_mm();  // the reference's is 1 mm too
-  const std::vector<Eigen::Vector3d> found = footprint.gaps(reference, Eigen::Isometry3d::Identity(), 0.3, link);
+  const std::vector<Eigen::Vector3d> found = footprint.gaps(reference, Eigen::Isometry3d::Identity(), 0.3, link,
+                                                             detail::area_per_point(reference.points(), reference.tree()));
   if (gaps != nullptr) *gaps = found;
   return detail::largest_gap_only_here(found, {}, link, link);
 }
