@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <numeric>
 
+#include <Eigen/Eigenvalues>
+
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
 
@@ -31,6 +33,11 @@ constexpr double kRimShift = 0.3;
 constexpr double kSeedReach = 4.0;
 // The tangent plane's tolerance grows by this share of the distance (a curved surface leaves its tangent plane).
 constexpr double kCurvatureSlack = 0.1;
+// A scan point found round a point is the same surface when its normal (over its kRimNeighbours) is within 45 deg of
+// the point's: the surface the tangent plane allows for (kCurvatureSlack: a chord 6 deg off, the normal at its end 11
+// deg) with room for noise. The rims of faces meeting the point's face at a step or an edge (their normals across
+// it) do not count: a face the scanner did not see, bounded by scanned faces, is not a hole in the scan.
+constexpr double kSameSurfaceCos = 0.7;
 
 std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -45,6 +52,7 @@ ScanFootprint::ScanFootprint(const std::vector<Eigen::Vector3d>& scan, std::size
   spacing_mm_ = std::sqrt(area_per_point(points_, tree_));
   for (const Eigen::Vector3d& p : points_) box_.extend(p);
   std::vector<char> rim(points_.size(), 0);
+  normals_.assign(points_.size(), Eigen::Vector3d::Zero());
   const auto count = static_cast<std::ptrdiff_t>(points_.size());
 #pragma omp parallel
   {
@@ -59,6 +67,12 @@ ScanFootprint::ScanFootprint(const std::vector<Eigen::Vector3d>& scan, std::size
       if (found.size() < 2) continue;
       centroid /= static_cast<double>(found.size() - 1);
       rim[i] = (centroid - points_[i]).norm() > kRimShift * std::sqrt(static_cast<double>(sq.back()));
+      Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+      for (std::size_t m = 1; m < found.size(); ++m) {
+        const Eigen::Vector3d e = points_[static_cast<std::size_t>(found[m])] - centroid;
+        scatter += e * e.transpose();
+      }
+      normals_[i] = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(0);
     }
   }
   for (std::size_t i = 0; i < points_.size(); ++i) {
@@ -76,7 +90,10 @@ bool ScanFootprint::hits(const Eigen::Vector3d& q, const Eigen::Vector3d& n, con
     if (j < 0) return false;
     const double d = std::sqrt(static_cast<double>(sq));
     const Eigen::Vector3d off = points_[static_cast<std::size_t>(j)] - q;
-    if (d <= near && std::abs(off.dot(n)) <= sheet_mm + kCurvatureSlack * off.norm()) return true;
+    if (d <= near && std::abs(off.dot(n)) <= sheet_mm + kCurvatureSlack * off.norm() &&
+        std::abs(normals_[static_cast<std::size_t>(j)].dot(n)) >= kSameSurfaceCos) {
+      return true;
+    }
     t += std::max(d - near, spacing_mm_);  // nothing nearer than d - near to x lies on the line before that step
   }
   return false;

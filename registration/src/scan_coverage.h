@@ -27,9 +27,10 @@ class ScanFootprint {
 
   // The reference points (reference frame) that the scan moved by T_ref_scan should have covered and did not: no scan
   // point within 2.5 spacings, yet scan points on the point's tangent plane (within sheet_mm, plus a tenth of the
-  // distance for curvature) found along each of 8 directions round it within max_gap_spacings spacings. Such a point
-  // is surrounded by scanned surface (a hole in the scan over reference surface), not beyond the scan's rim or on a
-  // face the scanner did not face. Each flagged point's position in the scan's frame. Regions are found from seeds
+  // distance for curvature) and facing its way (normals within 45 deg) found along each of 8 directions round it
+  // within 80 spacings. Such a point is surrounded by the scanned surface it lies on (a hole in the scan over
+  // reference surface), not beyond the scan's rim or on a face the scanner did not face (whose bounding edges, on
+  // its plane, belong to faces across it). Each flagged point's position in the scan's frame. Regions are found from seeds
   // (the reference points within 4 spacings of the scan's rim points: a gap's nearest scan point lies on the rim of
   // the empty region round it) and grown through reference points within link_mm of each other.
   // reference_area_mm2: the reference's area per point (area_per_point), which thins the seeds of a reference denser
@@ -51,6 +52,7 @@ class ScanFootprint {
   double spacing_mm_ = 0.0;
   Eigen::AlignedBox3d box_;
   std::vector<std::size_t> rim_;  // the points on the scan's rims, outer or round a hole
+  std::vector<Eigen::Vector3d> normals_;  // each point's unoriented normal (its kRimNeighbours' scatter)
 };
 
 // The reference surface's area per point (mm^2): pi r^2 / 8 at the median distance r to a point's 8th neighbour,

@@ -47,7 +47,7 @@ struct MultiStartOptions {
   // separation_ratio times as many points as the largest at the best's pose only. On gap_scan_points of the scan's
   // points (evenly strided; its spacing the square root of their area per point). 0 points: not tested, the default:
   // on at 10, a datum part's best fit from a given start came out turned 180 deg (InspectDatums, cause not found).
-  std::size_t gap_min_points = 0;
+  std::size_t gap_min_points = 10;
   double gap_min_area = 8.0;
   std::size_t gap_scan_points = 50000;
 
