@@ -45,8 +45,7 @@ struct MultiStartOptions {
   // same place of the scan at the best's), holds at least gap_min_points points, covers at least gap_min_area
   // squared scan spacings (the rims of a through hole seen at a slant leave regions of about 2), and holds
   // separation_ratio times as many points as the largest at the best's pose only. On gap_scan_points of the scan's
-  // points (evenly strided; its spacing the square root of their area per point). 0 points: not tested, the default:
-  // on at 10, a datum part's best fit from a given start came out turned 180 deg (InspectDatums, cause not found).
+  // points (evenly strided; its spacing the square root of their area per point). 0 points: not tested.
   std::size_t gap_min_points = 10;
   double gap_min_area = 8.0;
   std::size_t gap_scan_points = 50000;
