@@ -12,7 +12,7 @@
 #include <TopoDS_Compound.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
-#include <BRepClass_FaceClassifier.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
@@ -270,11 +270,12 @@ SurfaceSample sample_surface(const TopoDS_Shape& shape, std::size_t count, doubl
     BRepTools::UVBounds(face, u0, u1, v0, v1);
     std::uniform_real_distribution<double> u_of(u0, u1), v_of(v0, v1);
     const BRepAdaptor_Surface surface(face);
-    BRepClass_FaceClassifier classifier;
+    // The face's wires as polygons in (u, v), built once (a point near them is classified exactly): the classifier
+    // per point took 60 us on faces with many holes (a 2 m profile, 250 000 points: 16 s).
+    const BRepTopAdaptor_FClass2d classifier(face, 1e-9);
     for (std::size_t got = 0, tries = 0; got < wanted && tries < 100 * wanted; ++tries) {
       const double u = u_of(random), v = v_of(random);
-      classifier.Perform(face, gp_Pnt2d(u, v), 1e-9);
-      if (classifier.State() != TopAbs_IN) continue;
+      if (classifier.Perform(gp_Pnt2d(u, v)) != TopAbs_IN) continue;
       BRepLProp_SLProps props_at(surface, u, v, 1, 1e-9);
       if (!props_at.IsNormalDefined()) continue;
       gp_Dir n = props_at.Normal();
