@@ -7,8 +7,16 @@
 #include "conform/core/error.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/surface_noise.h"
+#include "cylinder_starts.h"
 
 namespace conform {
+
+namespace {
+
+// The turns of the cylinder starts, in inlier distances at the scan's wall.
+constexpr double kCylinderTurnStep = 5.0;
+
+}  // namespace
 
 const char* to_string(CoarseMethod method) {
   switch (method) {
@@ -62,16 +70,10 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
       if (h.found) starts.push_back({"fpfh hypothesis " + std::to_string(++rank), h.T_ref_scan});
     }
   }
-  // With FPFH the principal-axes starts join only when no hypothesis was found: the best start's probes turned by the
-  // reference's own symmetries (multi_start.h) are the mirror poses a near-symmetric part offers, and on a partial
-  // scan the scan's axes are not the reference's.
-  if (starts.empty()) {
-    for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
-  }
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : scan) box.extend(p);
   MultiStartOptions multi_start = options.multi_start;
   if (multi_start.inlier_distance_mm == 0.0 && options.inlier_noise_factor > 0.0) {
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : scan) box.extend(p);
     SurfaceNoiseOptions noise;
     noise.samples = 2000;
     result.scan_noise_mm = estimate_surface_noise(scan, noise);
@@ -79,6 +81,23 @@ CoarseResult coarse_align(const std::vector<Eigen::Vector3d>& scan, const IcpRef
                                               options.inlier_floor_share * box.diagonal().norm());
   }
   result.inlier_distance_mm = multi_start.inlier_distance_mm;
+  // With FPFH the principal-axes starts join only when no hypothesis was found: the best start's probes turned by the
+  // reference's own symmetries (multi_start.h) are the mirror poses a near-symmetric part offers, and on a partial
+  // scan the scan's axes are not the reference's.
+  // Nor does FPFH find one on a tube, whose features are all alike: the fitted cylinders' axes give the starts
+  // (cylinder_starts.h) beside the principal axes', turned about the axis in steps of kCylinderTurnStep inlier
+  // distances at the scan's farthest point from it (a quick probe reaches a weld bead or a cut end from there).
+  if (starts.empty()) {
+    if (result.fpfh_used) {
+      const double turn_step_mm = multi_start.inlier_distance_mm > 0.0
+                                      ? kCylinderTurnStep * multi_start.inlier_distance_mm
+                                      : 0.01 * box.diagonal().norm();
+      for (CoarseStart& s : detail::cylinder_starts(scan, reference.points(), reference.normals(), turn_step_mm)) {
+        starts.push_back(std::move(s));
+      }
+    }
+    for (CoarseStart& s : pca_starts(scan, reference.points(), options.pca_ambiguity)) starts.push_back(std::move(s));
+  }
   if (options.probe_thin_walls && result.fpfh_used && multi_start.wall_max_thickness_mm == 0.0) {
     multi_start.wall_max_thickness_mm = options.fpfh.feature_radius * result.fpfh.voxel_mm;
   }

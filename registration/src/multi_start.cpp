@@ -153,6 +153,37 @@ std::vector<CoarseStart> screened_starts(
   return kept;
 }
 
+// The starts given, those marked for screening (CoarseStart::screen: a tube's fine turns about its axis) screened by
+// a quick probe each on `few`: of the wall_probes best by share, those whose quick probes land apart (distinct_deg,
+// or 10 inlier distances and 1 % of the scan's size `size_mm` at its centre) are probed with the rest. Without
+// inlier scoring, wall_probes of them evenly spread.
+std::vector<CoarseStart> starts_to_probe(const std::vector<CoarseStart>& starts, const std::vector<Eigen::Vector3d>& few,
+                                         const IcpReference& reference, const MultiStartOptions& options, double reach,
+                                         const Eigen::Vector3d& centre, double size_mm) {
+  std::vector<CoarseStart> given;
+  std::vector<CoarseStart> to_screen;
+  for (const CoarseStart& s : starts) (s.screen ? to_screen : given).push_back(s);
+  if (to_screen.empty()) return given;
+  std::vector<CoarseStart> kept;
+  if (options.inlier_distance_mm > 0.0) {
+    const double screen_mm = std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
+    const double screen_rad = options.distinct_deg * M_PI / 180.0;
+    kept = screened_starts(to_screen, few, reference, options, reach, 0.0,
+                           [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+                             return rotation_angle(b * a.inverse()) > screen_rad ||
+                                    (b * centre - a * centre).norm() > screen_mm;
+                           });
+  } else {
+    const std::size_t stride =
+        std::max<std::size_t>(1, to_screen.size() / std::max<std::size_t>(1, options.wall_probes));
+    for (std::size_t i = 0; i < to_screen.size() && kept.size() < options.wall_probes; i += stride) {
+      kept.push_back(to_screen[i]);
+    }
+  }
+  given.insert(given.end(), kept.begin(), kept.end());
+  return given;
+}
+
 // The finite screw motion of a scaled twist x = (w L, v) about c: rotation |w| about the axis through
 // c + w x v / |w|^2 along w, with translation (w . v / |w|^2) |w| along it; a translation v when w = 0. (The
 // linearised step of icp_step.h turns about c instead: wrong by (angle^2 / 2) x the axis' distance for a large turn.)
@@ -309,7 +340,13 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       }
     }
   };
-  probe_all(starts);
+  // The probe points the screened starts (CoarseStart::screen, wall shifts, slides) are screened on.
+  const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
+  const Eigen::Vector3d centre =
+      std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
+      static_cast<double>(subset.size());
+  const double size_mm = size_of(subset);
+  probe_all(starts_to_probe(starts, few, reference, options, reach, centre, size_mm));
   if (options.probe_reference_symmetry) {
     // The best pose turned by the reference's own candidate symmetries: if the reference (or the part of it the scan
     // covers) looks the same turned, the turned pose fits as well and the ambiguity test below finds it, whether or
@@ -317,10 +354,6 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     const StartReport best_given = result.starts[static_cast<std::size_t>(result.best)];
     probe_all(detail::symmetry_starts(best_given, reference.points(), options.symmetry_similarity));
   }
-  const Eigen::Vector3d centre =
-      std::accumulate(subset.begin(), subset.end(), Eigen::Vector3d(Eigen::Vector3d::Zero())) /
-      static_cast<double>(subset.size());
-  const double size_mm = size_of(subset);
   // The reference's thin walls (wall_max_thickness_mm), looked for once: the shifted starts below, and the distance
   // that makes two poses distinct.
   std::vector<ThinWall> walls;
@@ -358,8 +391,6 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
     }
     return bases;
   };
-  // The probe points the shifted starts (walls, slides) are screened on.
-  const std::vector<Eigen::Vector3d> few = stride_downsample(subset, options.wall_screen_points);
   if (!walls.empty()) {
     // A scan shifted through a wall may also be turned by a near-symmetry, and the turn's probe is not always the
     // best.

@@ -30,9 +30,9 @@ class ScanFootprint {
   // distance for curvature) and facing its way (normals within 45 deg) found along each of 8 directions round it
   // within 80 spacings. Such a point is surrounded by the scanned surface it lies on (a hole in the scan over
   // reference surface), not beyond the scan's rim or on a face the scanner did not face (whose bounding edges, on
-  // its plane, belong to faces across it). Each flagged point's position in the scan's frame. Regions are found from seeds
-  // (the reference points within 4 spacings of the scan's rim points: a gap's nearest scan point lies on the rim of
-  // the empty region round it) and grown through reference points within link_mm of each other.
+  // its plane, belong to faces across it). Each flagged point's position in the scan's frame. Regions are found from
+  // seeds (the reference points within 4 spacings of the scan's rim points: a gap's nearest scan point lies on the rim
+  // of the empty region round it) and grown through reference points within link_mm of each other.
   // reference_area_mm2: the reference's area per point (area_per_point), which thins the seeds of a reference denser
   // than the scan.
   std::vector<Eigen::Vector3d> gaps(const IcpReference& reference, const Eigen::Isometry3d& T_ref_scan,

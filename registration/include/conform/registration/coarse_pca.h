@@ -25,6 +25,9 @@ PrincipalAxes principal_axes(const std::vector<Eigen::Vector3d>& points);
 struct CoarseStart {
   std::string label;  // e.g. "pca +x+y", "pca -x+y turn 90", "fpfh", "identity"
   Eigen::Isometry3d T_ref_scan = Eigen::Isometry3d::Identity();
+  // One of many fine candidates (a tube's turns about its axis, a few mm apart at its wall): rank_starts screens
+  // these by a quick probe and probes only the best few (MultiStartOptions::wall_probes), as it does its wall shifts.
+  bool screen = false;
 };
 
 // Two variances closer than `ambiguity` (relative to the larger) leave the axes in their plane free: the starts then
