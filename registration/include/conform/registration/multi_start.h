@@ -68,7 +68,9 @@ struct MultiStartOptions {
   // The shifted starts (up to 26 a wall and base) are screened by a quick probe (wall_screen_iterations steps on
   // wall_screen_points of the probe points); the wall_probes best by inlier share that come within share_margin of
   // the best pose's share on the same points are probed as every start is. On 5 mm and 3 mm plates the same poses as
-  // probing every shifted start (docs/measurements/cad.md) at the cost of not probing.
+  // probing every shifted start (docs/measurements/cad.md) at the cost of not probing. Starts given marked for
+  // screening (CoarseStart::screen: a tube's fine turns) are screened the same way, the wall_probes best whose quick
+  // probes land apart probed with the rest.
   std::size_t wall_probes = 8;
   std::size_t wall_screen_points = 500;
   int wall_screen_iterations = 5;
