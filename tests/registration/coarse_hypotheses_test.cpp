@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <iterator>
 
 #include "conform/core/error.h"
 #include "conform/registration/coarse.h"
@@ -238,6 +239,39 @@ TEST(CoarseHypotheses, ATubeArcStartsFromTheFittedAxes) {
     EXPECT_TRUE(right) << trial;
     EXPECT_TRUE(right || !accepted(c, 1.0)) << trial;  // never a wrong pose passed on as the coarse answer
   }
+}
+
+// The same tube arc over realistic variation, one seed a case: noise 0.1 mm, a coarse 3 mm scan, a 90 deg arc, a
+// 180 deg arc. Never a wrong pose passed on as the coarse answer; the right one found on most (seen: 3 of 4 passed
+// on, the 180 deg arc right but ranked ambiguous).
+TEST(CoarseHypothesesMatrix, TubeArcsOverNoiseSamplingAndArc) {
+  Mesh reference_mesh;
+  reference_mesh.vertices = beaded_tube(0.0, 360.0, 3.0, true);
+  const IcpReference reference(reference_mesh);
+  struct Case {
+    double arc_deg, step_mm, noise_mm;
+  };
+  const Case cases[] = {{120.0, 1.5, 0.1}, {120.0, 3.0, 0.03}, {90.0, 1.5, 0.03}, {180.0, 2.0, 0.03}};
+  Tally t;
+  for (std::size_t k = 0; k < std::size(cases); ++k) {
+    const Case& c = cases[k];
+    Random random(static_cast<std::uint64_t>(710 + k));
+    const Eigen::Isometry3d truth = test::random_motion(random, M_PI, 100.0, Eigen::Vector3d::Zero());
+    const std::vector<Eigen::Vector3d> scan = test::transformed_points(
+        with_noise(beaded_tube(0.0, c.arc_deg, c.step_mm, false), c.noise_mm, random), truth.inverse());
+    const CoarseResult r = coarse_align(scan, reference, fpfh_options(700.0, static_cast<std::uint64_t>(k + 1)));
+    const Eigen::Vector3d centre = test::mean_point(scan);
+    const bool right = test::rotation_error_deg(r.T_ref_scan, truth) < 1.0 &&
+                       (r.T_ref_scan * centre - truth * centre).norm() < 1.0;
+    const bool passed_on = accepted(r, 1.0);
+    std::printf("tube arc %.0f deg, %.1f mm, noise %.2f: %s, %s\n", c.arc_deg, c.step_mm, c.noise_mm,
+                right ? "right" : "WRONG", passed_on ? "passed on" : "ambiguous or short");
+    t.right += right && passed_on;
+    t.refused += !passed_on;
+    t.wrong_accepted += !right && passed_on;
+  }
+  EXPECT_EQ(t.wrong_accepted, 0);
+  EXPECT_GE(t.right, 3);
 }
 
 }  // namespace
