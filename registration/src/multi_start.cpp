@@ -438,6 +438,11 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
            static_cast<double>(r.a_only) * holes->area_per_point_mm2() >= options.gap_min_area * s * s &&
            static_cast<double>(r.a_only) >= options.separation_ratio * static_cast<double>(r.b_only);
   };
+  // The points a close start's tie is counted again on (separation_recount_points).
+  const std::vector<Eigen::Vector3d> recount =
+      options.separation_recount_points > subset.size() && by_share
+          ? stride_downsample(scan, options.separation_recount_points)
+          : std::vector<Eigen::Vector3d>{};
   // Whether start j (as `o`, its probe's figures and inlier mask `m`) competes with the best (`b`, mask `bm`): close
   // in score, elsewhere, not along a free motion, not told apart. The flags are set on start j.
   const auto competes = [&](std::size_t j, const StartReport& b, const std::vector<char>& bm, const StartReport& o,
@@ -460,6 +465,16 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       other.best_only_share = static_cast<double>(best_only) / static_cast<double>(subset.size());
       other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
       other.separated = separated(best_only, other_only, subset.size(), options);
+      if (!other.separated && recount.size() > subset.size()) {
+        const std::vector<char> bm2 = inliers(recount, b.T_probe, reference, options.inlier_distance_mm, reach);
+        const std::vector<char> m2 = inliers(recount, o.T_probe, reference, options.inlier_distance_mm, reach);
+        std::size_t best_only2 = 0, other_only2 = 0;
+        for (std::size_t i = 0; i < recount.size(); ++i) {
+          best_only2 += bm2[i] && !m2[i];
+          other_only2 += m2[i] && !bm2[i];
+        }
+        other.separated = separated(best_only2, other_only2, recount.size(), options);
+      }
       if (!other.separated && options.gap_min_points > 0) {
         other.separated_by_gaps = holes_tell(o.T_probe, b.T_probe, &other);
         other.separated = other.separated_by_gaps;

@@ -242,8 +242,10 @@ TEST(CoarseHypotheses, ATubeArcStartsFromTheFittedAxes) {
 }
 
 // The same tube arc over realistic variation, one seed a case: noise 0.1 mm, a coarse 3 mm scan, a 90 deg arc, a
-// 180 deg arc. Never a wrong pose passed on as the coarse answer; the right one found on most (seen: 3 of 4 passed
-// on, the 180 deg arc right but ranked ambiguous).
+// 180 deg arc. Never a wrong pose passed on as the coarse answer, and the right one on each: the 180 deg arc's rival
+// turn hides the reference's bead beyond the scan's edge, and only the scan's bead crest (0.5 % of the 3000 probe
+// points, z 3.9) tells them apart; ranked ambiguous until ties were counted again on 12 000 points
+// (MultiStartOptions::separation_recount_points).
 TEST(CoarseHypothesesMatrix, TubeArcsOverNoiseSamplingAndArc) {
   Mesh reference_mesh;
   reference_mesh.vertices = beaded_tube(0.0, 360.0, 3.0, true);
@@ -271,7 +273,7 @@ TEST(CoarseHypothesesMatrix, TubeArcsOverNoiseSamplingAndArc) {
     t.wrong_accepted += !right && passed_on;
   }
   EXPECT_EQ(t.wrong_accepted, 0);
-  EXPECT_GE(t.right, 3);
+  EXPECT_EQ(t.right, 4);
 }
 
 }  // namespace

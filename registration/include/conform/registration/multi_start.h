@@ -38,6 +38,11 @@ struct MultiStartOptions {
   double separation_z = 4.0;
   double separation_ratio = 3.0;
   double separation_min_share = 0.005;
+  // A close start the probe points do not tell apart is counted again on up to this many of the scan's points
+  // (evenly strided), the two poses as they are: a feature a few tenths of a percent of the scan (a weld bead's crest)
+  // is as many standard deviations beyond chance as the square root of the points allows. Told apart only in the
+  // best's favour, by the same three conditions. 0 or no more points than the probe's: not counted again.
+  std::size_t separation_recount_points = 12000;
   // With inlier scoring, a close start the scan's points do not tell apart is told apart by the reference's: where
   // the scan has a hole (a pin hole, a notch the part really has) over solid reference surface at the start's pose
   // and over a hole of the reference at the best's (scan_coverage.h). Told apart when the largest region of
