@@ -157,9 +157,10 @@ std::vector<CoarseStart> screened_starts(
 // a quick probe each on `few`: of the wall_probes best by share, those whose quick probes land apart (distinct_deg,
 // or 10 inlier distances and 1 % of the scan's size `size_mm` at its centre) are probed with the rest. Without
 // inlier scoring, wall_probes of them evenly spread.
-std::vector<CoarseStart> starts_to_probe(const std::vector<CoarseStart>& starts, const std::vector<Eigen::Vector3d>& few,
-                                         const IcpReference& reference, const MultiStartOptions& options, double reach,
-                                         const Eigen::Vector3d& centre, double size_mm) {
+std::vector<CoarseStart> starts_to_probe(const std::vector<CoarseStart>& starts,
+                                         const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
+                                         const MultiStartOptions& options, double reach, const Eigen::Vector3d& centre,
+                                         double size_mm) {
   std::vector<CoarseStart> given;
   std::vector<CoarseStart> to_screen;
   for (const CoarseStart& s : starts) (s.screen ? to_screen : given).push_back(s);
