@@ -62,6 +62,21 @@ double share_of(const std::vector<char>& mask) {
 // Whether the best start's inliers outnumber the other's where they disagree, beyond chance: at two poses of a
 // symmetric surface the points in only one pose's inlier set are threshold noise, equally likely either way
 // (binomial, p = 1/2); a real difference (a boss that only one pose puts on the reference) is one-sided.
+// The points inlying at the best's pose only and at the other's only (two inlier masks of the same points).
+struct OneSided {
+  std::size_t best_only = 0;
+  std::size_t other_only = 0;
+};
+
+OneSided one_sided(const std::vector<char>& best, const std::vector<char>& other) {
+  OneSided c;
+  for (std::size_t i = 0; i < best.size(); ++i) {
+    c.best_only += best[i] && !other[i];
+    c.other_only += other[i] && !best[i];
+  }
+  return c;
+}
+
 bool separated(std::size_t best_only, std::size_t other_only, std::size_t n, const MultiStartOptions& o) {
   if (o.separation_z <= 0.0) return false;
   const double b = static_cast<double>(best_only), a = static_cast<double>(other_only);
@@ -226,12 +241,8 @@ std::vector<DegenerateDirection> symmetric_motions(const std::vector<Eigen::Vect
     for (double step : {-step_mm, step_mm, -4.0 * step_mm, 4.0 * step_mm}) {
       const Eigen::Isometry3d moved = screw_motion(step / reach_per_unit * u, degeneracy.centre, L);
       const std::vector<char> m = inliers(subset, moved * T_best, reference, o.inlier_distance_mm, reach);
-      std::size_t best_only = 0, moved_only = 0;
-      for (std::size_t i = 0; i < subset.size(); ++i) {
-        best_only += mask[i] && !m[i];
-        moved_only += m[i] && !mask[i];
-      }
-      keeps = keeps && !separated(best_only, moved_only, subset.size(), o);
+      const OneSided c = one_sided(mask, m);
+      keeps = keeps && !separated(c.best_only, c.other_only, subset.size(), o);
     }
     if (keeps) free.push_back(u);
   }
@@ -444,6 +455,14 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       options.separation_recount_points > subset.size() && by_share
           ? stride_downsample(scan, options.separation_recount_points)
           : std::vector<Eigen::Vector3d>{};
+  // The best's inlier mask on them, kept for its pose (every rival is counted against the same best).
+  std::optional<std::pair<Eigen::Matrix4d, std::vector<char>>> recount_best;
+  const auto recount_best_mask = [&](const Eigen::Isometry3d& T) -> const std::vector<char>& {
+    if (!recount_best || recount_best->first != T.matrix()) {
+      recount_best.emplace(T.matrix(), inliers(recount, T, reference, options.inlier_distance_mm, reach));
+    }
+    return recount_best->second;
+  };
   // Whether start j (as `o`, its probe's figures and inlier mask `m`) competes with the best (`b`, mask `bm`): close
   // in score, elsewhere, not along a free motion, not told apart. The flags are set on start j.
   const auto competes = [&](std::size_t j, const StartReport& b, const std::vector<char>& bm, const StartReport& o,
@@ -458,23 +477,14 @@ MultiStartResult rank_starts(const std::vector<Eigen::Vector3d>& scan, const Icp
       return false;
     }
     if (by_share) {
-      std::size_t best_only = 0, other_only = 0;
-      for (std::size_t i = 0; i < subset.size(); ++i) {
-        best_only += bm[i] && !m[i];
-        other_only += m[i] && !bm[i];
-      }
-      other.best_only_share = static_cast<double>(best_only) / static_cast<double>(subset.size());
-      other.only_share = static_cast<double>(other_only) / static_cast<double>(subset.size());
-      other.separated = separated(best_only, other_only, subset.size(), options);
+      const OneSided c = one_sided(bm, m);
+      other.best_only_share = static_cast<double>(c.best_only) / static_cast<double>(subset.size());
+      other.only_share = static_cast<double>(c.other_only) / static_cast<double>(subset.size());
+      other.separated = separated(c.best_only, c.other_only, subset.size(), options);
       if (!other.separated && recount.size() > subset.size()) {
-        const std::vector<char> bm2 = inliers(recount, b.T_probe, reference, options.inlier_distance_mm, reach);
-        const std::vector<char> m2 = inliers(recount, o.T_probe, reference, options.inlier_distance_mm, reach);
-        std::size_t best_only2 = 0, other_only2 = 0;
-        for (std::size_t i = 0; i < recount.size(); ++i) {
-          best_only2 += bm2[i] && !m2[i];
-          other_only2 += m2[i] && !bm2[i];
-        }
-        other.separated = separated(best_only2, other_only2, recount.size(), options);
+        const OneSided again = one_sided(recount_best_mask(b.T_probe),
+                                         inliers(recount, o.T_probe, reference, options.inlier_distance_mm, reach));
+        other.separated = separated(again.best_only, again.other_only, recount.size(), options);
       }
       if (!other.separated && options.gap_min_points > 0) {
         other.separated_by_gaps = holes_tell(o.T_probe, b.T_probe, &other);
