@@ -103,9 +103,8 @@ class AlignCommand : public Command {
                  "(from the residuals, the surface's constraint and, against a cloud, the fit's bias and the normals' "
                  "model); a pose from "
                  "--init pca/fpfh that misses it is refused (exit 1), one from a start you gave is 'check'; 0: a sixth "
-                 "of --tolerance when given, else " + shown(kAlignCloudPoseNoiseShare) + " times (against a mesh " +
-                     shown(kAlignMeshPoseNoiseShare) + " times) the noise of the scan or of the fit, whichever is "
-                     "larger (at least " + shown(kAlignFinestNoiseMm) + " mm)");
+                 "of --tolerance when given, else " + shown(kAlignPoseNoiseShare) + " times the noise of the scan or of "
+                     "the fit, whichever is larger (at least " + shown(kAlignFinestNoiseMm) + " mm)");
     c.add_option("--tolerance", options_.tolerance_mm,
                  "The inspection tolerance +-mm the pose serves (as compare --tolerance); sets the default "
                  "--pose-tolerance-mm; 0: not stated");

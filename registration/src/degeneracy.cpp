@@ -205,20 +205,33 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
   const double floor = std::max(largest * 1e-15, 1e-300);
   const Eigen::Index k = report.eigenvalues.size();
   const Eigen::MatrixXd U = P * solver.eigenvectors();
-  Eigen::VectorXd lambdas(k), variances(k), gaussians(k);
+  Eigen::VectorXd gaussians(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    // sigma^2 (N H)^-1 along the eigenvector: what decides the holds below.
+    gaussians(i) = noise_mm * noise_mm / (count * std::max(report.eigenvalues(i), floor));
+  }
+  // The covariance from the robust fit's own bread (PlaneNormalMatrix::bread), H when it is not known.
+  Eigen::MatrixXd Ub = U;
+  Eigen::VectorXd lambdas = report.eigenvalues;
+  if (!matrix.bread.isZero(0.0)) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> bread(P.transpose() * matrix.bread * P);
+    Ub = P * bread.eigenvectors();
+    lambdas = bread.eigenvalues().cwiseMax(0.0);
+  }
+  Eigen::VectorXd variances(k);
   Matrix6d scaled_covariance = Matrix6d::Zero();
   for (Eigen::Index i = 0; i < k; ++i) {
-    const Vector6d u = U.col(i);
-    // sigma^2 (N H)^-1 along the eigenvector: the Gauss-Newton covariance of the scaled twist.
-    lambdas(i) = std::max(report.eigenvalues(i), floor);
-    gaussians(i) = noise_mm * noise_mm / (count * lambdas(i));
+    const Vector6d u = Ub.col(i);
+    // sigma^2 (N A)^-1 along the eigenvector: the Gauss-Newton covariance of the scaled twist.
+    lambdas(i) = std::max(lambdas(i), floor);
     // The sandwich sees the residuals where this direction is measured; away from the optimum they are the pose's
     // error, not noise, so only the robust noise decides what is held (else a wrong start would hold itself).
-    variances(i) = std::max(gaussians(i), u.dot(matrix.residual_moment * u) / (count * lambdas(i) * lambdas(i)));
+    variances(i) = std::max(noise_mm * noise_mm / (count * lambdas(i)),
+                            u.dot(matrix.residual_moment * u) / (count * lambdas(i) * lambdas(i)));
     scaled_covariance.noalias() += variances(i) * u * u.transpose();
   }
   if (matrix.clusters > 1 && variances.minCoeff() > 0.0) {
-    scaled_covariance = bound_by_cluster_sandwich(U, variances, lambdas, matrix.cluster_moment, count);
+    scaled_covariance = bound_by_cluster_sandwich(Ub, variances, lambdas, matrix.cluster_moment, count);
   }
   std::vector<Eigen::Index> degenerate;
   for (Eigen::Index i = 0; i < k; ++i) {

@@ -134,7 +134,9 @@ void record(const std::vector<Pair>& pairs, const StepFigures& f, std::size_t sc
   result.inlier_fraction = static_cast<double>(f.inliers.size()) / static_cast<double>(scan_size);
   result.kernel_scale_mm = f.kernel_scale_mm;
   PlaneNormalMatrix plane = f.plane;
-  if (f.has_equations) plane.residual_moment = detail::residual_moment_of(f.inliers.size(), plane, pair_item(pairs, f));
+  if (f.has_equations) {
+    detail::residual_moments_of(f.inliers.size(), options.kernel == RobustKernel::kHuber, plane, pair_item(pairs, f));
+  }
   result.degeneracy = analyze_constraint(plane, f.noise_mm, options.free_tolerance_mm, options.free_tolerance_rad,
                                          options.free_dof, options.free_relative_eigenvalue, options.start_std_mm,
                                          options.start_std_rad);

@@ -118,23 +118,38 @@ StepSums step_sums(std::size_t n, const Eigen::Vector3d& origin, Item&& item) {
   return out;
 }
 
-// sum r^2 J J^T / n about the centre and length scale of `plane` (PlaneNormalMatrix::residual_moment); item as for
-// step_sums (w unused).
+// The sandwich's middle sum psi(r)^2 J J^T / n (PlaneNormalMatrix::residual_moment) and its bread
+// sum psi'(r) J J^T / n (PlaneNormalMatrix::bread) about the centre and length scale of `plane`, psi(r) = w r the
+// robust score; item as for step_sums. `saturating`: the kernel's score is flat where its weight is below 1 (Huber:
+// psi' = 0 there); otherwise (Tukey) the weight stands in for psi'.
 template <typename Item>
-Matrix6d residual_moment_of(std::size_t n, const PlaneNormalMatrix& plane, Item&& item) {
+void residual_moments_of(std::size_t n, bool saturating, PlaneNormalMatrix& plane, Item&& item) {
   using step_sums_detail::Upper;
-  if (n == 0 || !(plane.length_scale_mm > 0.0)) return Matrix6d::Zero();
+  if (n == 0 || !(plane.length_scale_mm > 0.0)) return;
   const double inv_length = 1.0 / plane.length_scale_mm;
-  const Upper sum = block_sum(n, Upper(Upper::Zero()), [&](std::size_t k, Upper& a) {
+  struct Sums {
+    Upper middle = Upper::Zero(), bread = Upper::Zero();
+    Sums& operator+=(const Sums& o) {
+      middle += o.middle;
+      bread += o.bread;
+      return *this;
+    }
+  };
+  const Sums sums = block_sum(n, Sums{}, [&](std::size_t k, Sums& a) {
     Eigen::Vector3d q, normal;
     double r = 0.0, w = 0.0;
     item(k, q, normal, r, w);
     Vector6d J;
     J.head<3>() = (q - plane.centre).cross(normal) * inv_length;
     J.tail<3>() = normal;
-    a += (r * r) * step_sums_detail::upper_products(J);
+    const Upper JJ = step_sums_detail::upper_products(J);
+    const double psi = w * r;
+    a.middle += (psi * psi) * JJ;
+    const double slope = saturating ? (w >= 1.0 ? 1.0 : 0.0) : std::max(w, 0.0);
+    if (slope > 0.0) a.bread += slope * JJ;
   });
-  return step_sums_detail::symmetric(sum) / static_cast<double>(n);
+  plane.residual_moment = step_sums_detail::symmetric(sums.middle) / static_cast<double>(n);
+  plane.bread = step_sums_detail::symmetric(sums.bread) / static_cast<double>(n);
 }
 
 }  // namespace conform::detail

@@ -388,6 +388,10 @@ TEST(AlignMatrixBossPlateMesh, PartialScanAgainstMesh) {
   EXPECT_EQ(t.wrong_accepted, 0);
   EXPECT_GE(t.right, 7);  // measured 9, 10, 9 on streams 0, 1, 2 (7, 8, 8 before the coarse stage sampled the mesh)
   EXPECT_GE(t.start_right, 9);  // measured 10, 10, 10; 0 with the features at 1/30 of the reference's diagonal
+  // The mesh's rib walls are one chord of the grid each: the scan's wall points lie up to half a grid step off them,
+  // and the fit's kernel saturates them. Measured 9, 10, 9 of 10 within 3 std on streams 0, 1, 2 (8 on stream 0 and
+  // 46 of 60 on streams 0-5 when the saturated pairs counted as information in the covariance; 55 of 60 since).
+  EXPECT_GE(t.honest, 9);
 }
 
 }  // namespace

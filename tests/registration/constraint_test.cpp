@@ -146,6 +146,29 @@ TEST(Constraint, ClusterSandwichSeesResidualsSharedOverABlock) {
   EXPECT_NEAR(analyze_constraint(one, sigma, 1.0, 1.0, tz_only).std(5), sigma / std::sqrt(count), 1e-12);
 }
 
+// The robust fit's own bread (PlaneNormalMatrix::bread): when the kernel saturates three quarters of the pairs
+// (spread over the plane alike), psi' sums to a quarter of H and var(tz) = sigma^2 / (N / 4): twice the std that
+// counts every pair as information. What is held is decided on H as before.
+TEST(Constraint, PairsTheKernelSaturatesAddNoInformation) {
+  const PlaneGrid grid = plane_grid();
+  const double sigma = 0.005, count = static_cast<double>(grid.q.size());
+  FreeDof tz_only;
+  tz_only.rx = tz_only.ry = tz_only.rz = tz_only.tx = tz_only.ty = false;
+  PlaneNormalMatrix matrix = plane_normal_matrix(grid.q, grid.n);
+  const DegeneracyReport all = analyze_constraint(matrix, sigma, 1.0, 1.0, tz_only);
+  matrix.bread = 0.25 * matrix.H;
+  const DegeneracyReport robust = analyze_constraint(matrix, sigma, 1.0, 1.0, tz_only);
+  EXPECT_NEAR(all.std(5), sigma / std::sqrt(count), 1e-12);
+  EXPECT_NEAR(robust.std(5), 2.0 * sigma / std::sqrt(count), 1e-12);
+  // All six free: the in-plane motions are held alike with and without the bread.
+  PlaneNormalMatrix free_matrix = plane_normal_matrix(grid.q, grid.n);
+  const std::size_t held = analyze_constraint(free_matrix, sigma, 0.02, 0.01 * kDeg).directions.size();
+  free_matrix.bread = 0.25 * free_matrix.H;
+  const DegeneracyReport r = analyze_constraint(free_matrix, sigma, 0.02, 0.01 * kDeg);
+  EXPECT_EQ(r.directions.size(), held);
+  EXPECT_NEAR(r.std(0), 2.0 * sigma / std::sqrt(grid.syy), 1e-12);
+}
+
 struct PlatePair {
   std::vector<Eigen::Vector3d> scan;       // in the scan frame
   std::vector<Eigen::Vector3d> reference;  // in the reference frame

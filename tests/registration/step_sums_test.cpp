@@ -57,9 +57,10 @@ TEST(StepSums, EqualTheDirectSumsAboutTheCentroid) {
     EXPECT_EQ(sums.plane.count, count);
     EXPECT_LT(relative_difference(sums.plane.H, direct.H), 1e-9);
     EXPECT_TRUE(sums.plane.residual_moment.isZero());
-    EXPECT_LT(relative_difference(detail::residual_moment_of(count, sums.plane, item), direct.residual_moment), 1e-9);
-    // The weighted normal equations, J = [((q - c) x n) / L; n] (Chen & Medioni 1992), and the RMS.
-    Matrix6d H = Matrix6d::Zero();
+    // The weighted normal equations, J = [((q - c) x n) / L; n] (Chen & Medioni 1992), and the RMS; the robust
+    // sandwich's middle sum (w r)^2 J J^T and its bread: sum J J^T over the pairs of weight 1 (Huber's psi' = 0
+    // beyond its scale), sum w J J^T for a kernel that does not saturate.
+    Matrix6d H = Matrix6d::Zero(), middle = Matrix6d::Zero(), huber_bread = Matrix6d::Zero();
     Vector6d g = Vector6d::Zero();
     double r2 = 0.0;
     for (const Item& it : items) {
@@ -69,7 +70,26 @@ TEST(StepSums, EqualTheDirectSumsAboutTheCentroid) {
       H += it.w * J * J.transpose();
       g += it.w * it.r * J;
       r2 += it.r * it.r;
+      middle += (it.w * it.r) * (it.w * it.r) * J * J.transpose();
+      if (it.w >= 1.0) huber_bread += J * J.transpose();
     }
+    const double n = static_cast<double>(count);
+    PlaneNormalMatrix huber = sums.plane, weighted = sums.plane;
+    detail::residual_moments_of(count, true, huber, item);
+    detail::residual_moments_of(count, false, weighted, item);
+    EXPECT_LT(relative_difference(huber.residual_moment, middle / n), 1e-9);
+    EXPECT_LT(relative_difference(weighted.residual_moment, middle / n), 1e-9);
+    EXPECT_LT(relative_difference(huber.bread, huber_bread / n), 1e-9);
+    EXPECT_LT(relative_difference(weighted.bread, H / n), 1e-9);
+    // Unit weights: the middle is the plain residual moment and the bread the normal matrix.
+    PlaneNormalMatrix plain = sums.plane;
+    detail::residual_moments_of(count, true, plain, [&](std::size_t k, Eigen::Vector3d& q, Eigen::Vector3d& nk,
+                                                        double& r, double& w) {
+      item(k, q, nk, r, w);
+      w = 1.0;
+    });
+    EXPECT_LT(relative_difference(plain.residual_moment, direct.residual_moment), 1e-9);
+    EXPECT_LT(relative_difference(plain.bread, direct.H), 1e-9);
     EXPECT_LT(relative_difference(sums.H, H), 1e-9);
     EXPECT_LT(relative_difference(sums.g, g), 1e-9);
     EXPECT_NEAR(sums.rms_mm, std::sqrt(r2 / static_cast<double>(count)), 1e-12);

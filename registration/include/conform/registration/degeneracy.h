@@ -66,6 +66,10 @@ struct PlaneNormalMatrix {
   // Zero: not computed (cluster_moment_of, once at the end of ICP).
   Matrix6d cluster_moment = Matrix6d::Zero();
   std::size_t clusters = 0;  // K
+  // The robust fit's own bread: sum psi'(r_i) J^T J / count, psi the kernel's score (Huber: 1 within its scale, 0
+  // beyond). The covariance of an M-estimate is bread^-1 middle bread^-1 / N; a pair the kernel saturates moves the
+  // fit by a bounded amount whatever its position, so it adds no information. Zero: H (no kernel, or not known).
+  Matrix6d bread = Matrix6d::Zero();
 };
 
 struct DegeneracyReport {
@@ -118,9 +122,10 @@ DegeneracyReport analyze_degeneracy(const PlaneNormalMatrix& matrix, double thre
 // when sigma / sqrt(N lambda) (N = matrix.count, sigma = noise_mm > 0) moves it more than max(tolerance_mm,
 // start_std_mm) along, or max(tolerance_rad, start_std_rad) about, some axis (loose, and the start known better than
 // the data would give it), and its eigenvalue is below 1e-2 of the largest (a direction fixed within ten times
-// the best one's std is never held: holding it cannot beat the data). The reported variance of u is the larger of
-// that and the sandwich estimate u^T M u / (N lambda^2) (M = matrix.residual_moment), A = V diag(variances) V^T;
-// with a cluster moment C (matrix.clusters > 0) the covariance is A + (S - A)_+, S = H^-1 C H^-1 / N the
+// the best one's std is never held: holding it cannot beat the data). The covariance is taken on the robust fit's
+// bread B (matrix.bread; H when zero): along B's eigen-directions v (eigenvalue mu) the larger of sigma^2 / (N mu) and
+// the sandwich estimate v^T M v / (N mu^2) (M = matrix.residual_moment), A = V diag(variances) V^T;
+// with a cluster moment C (matrix.clusters > 0) the covariance is A + (S - A)_+, S = B^-1 C B^-1 / N the
 // cluster-robust sandwich over the free degrees of freedom and (.)_+ the positive part of a symmetric matrix: the
 // least change of A that bounds both A and S from above, so every direction's std is at least either's. start_std 0
 // (the default here): the start is exact, every loose direction is held. Directions below min_relative of the largest

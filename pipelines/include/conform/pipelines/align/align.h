@@ -38,10 +38,9 @@ const char* to_string(AlignInit init);
 // the part finds nothing.
 inline constexpr double kAlignAutoDistanceShare = 0.1;
 // The accuracy asked of the pose by default (AlignOptions::pose_tolerance_mm 0, no tolerance stated): this many
-// times the larger of the scan's and the fit's noise, taken as at least kAlignFinestNoiseMm; against a cloud and
-// against a mesh (align_verdict.cpp says how each was calibrated).
-inline constexpr double kAlignCloudPoseNoiseShare = 2.7;
-inline constexpr double kAlignMeshPoseNoiseShare = 1.7320508075688772;  // sqrt(3)
+// times the larger of the scan's and the fit's noise, taken as at least kAlignFinestNoiseMm, against a cloud and
+// against a mesh alike (align_verdict.cpp says how it was calibrated).
+inline constexpr double kAlignPoseNoiseShare = 2.7;
 inline constexpr double kAlignFinestNoiseMm = 0.02;
 
 // The fine method when AlignOptions::method is empty: point-to-surface against a mesh, point-to-plane against a cloud
