@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <utility>
 
 #include "conform/core/cloud.h"
 #include "conform/core/error.h"
 #include "conform/core/normals.h"
+#include "conform/core/parallel.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/feature_ransac.h"
 #include "fpfh_features.h"
@@ -222,29 +222,13 @@ FpfhResult fpfh_ransac(const std::vector<Eigen::Vector3d>& scan, const std::vect
   // The two sides at once, one a thread: most of describe() (voxels, outlier removal, normals) runs on one thread.
   // Each side's result is the same either way; the scan's error, if both fail, is the one reported, as before.
   Described s, r;
-  std::exception_ptr failed[2];
-#pragma omp parallel sections
-  {
-#pragma omp section
-    {
-      try {
-        s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
-      } catch (...) {
-        failed[0] = std::current_exception();
-      }
+  for_each_in_parallel(2, [&](std::size_t side) {
+    if (side == 0) {
+      s = describe(scan, scan_origin, v, options.feature_radius * v, options, "scan");
+    } else {
+      r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
     }
-#pragma omp section
-    {
-      try {
-        r = describe(reference, ref_origin, v, options.feature_radius * v, options, "reference");
-      } catch (...) {
-        failed[1] = std::current_exception();
-      }
-    }
-  }
-  for (const std::exception_ptr& e : failed) {
-    if (e) std::rethrow_exception(e);
-  }
+  });
   result.scan_points = s.points.size();
   result.reference_points = r.points.size();
   result.feature_radius_mm = options.feature_radius * v;

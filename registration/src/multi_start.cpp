@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <numeric>
 #include <optional>
@@ -10,85 +9,28 @@
 #include <utility>
 
 #include "conform/core/error.h"
+#include "conform/core/parallel.h"
 #include "conform/registration/downsample.h"
 #include "conform/registration/thin_walls.h"
 #include "scan_coverage.h"
+#include "start_scoring.h"
+#include "start_screening.h"
 #include "symmetry_starts.h"
 
 namespace conform {
 
 namespace {
 
-// sqrt(mean(min(d, cap)^2)) over the points, d the distance to the nearest reference point.
-double truncated_rms(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
-                     const IcpReference& reference, double cap) {
-  double sum = 0.0;
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = T * p;
-    const Eigen::Vector3f qf = q.cast<float>();
-    double d = cap;
-    if (qf.allFinite()) {
-      const int j = reference.tree().nearest(qf);
-      if (j >= 0) d = std::min(cap, (q - reference.points()[static_cast<std::size_t>(j)]).norm());
-    }
-    sum += d * d;
-  }
-  return std::sqrt(sum / static_cast<double>(points.size()));
-}
-
-// Which points lie within `tolerance` of the reference plane at their nearest reference point, that point no farther
-// than `reach` (a mesh's vertices are sparse: the plane distance is the one that measures the fit).
-std::vector<char> inliers(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& T,
-                          const IcpReference& reference, double tolerance, double reach) {
-  std::vector<char> inside(points.size(), 0);
-  const bool has_normals = reference.normals().size() == reference.points().size();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d q = T * points[i];
-    const Eigen::Vector3f qf = q.cast<float>();
-    if (!qf.allFinite()) continue;
-    const int j = reference.tree().nearest(qf);
-    if (j < 0) continue;
-    const Eigen::Vector3d d = q - reference.points()[static_cast<std::size_t>(j)];
-    const double along = has_normals ? std::abs(d.dot(reference.normals()[static_cast<std::size_t>(j)])) : d.norm();
-    inside[i] = along <= tolerance && d.norm() <= reach;
-  }
-  return inside;
-}
-
-double share_of(const std::vector<char>& mask) {
-  return static_cast<double>(std::count(mask.begin(), mask.end(), 1)) / static_cast<double>(mask.size());
-}
-
-// Whether the best start's inliers outnumber the other's where they disagree, beyond chance: at two poses of a
-// symmetric surface the points in only one pose's inlier set are threshold noise, equally likely either way
-// (binomial, p = 1/2); a real difference (a boss that only one pose puts on the reference) is one-sided.
-// The points inlying at the best's pose only and at the other's only (two inlier masks of the same points).
-struct OneSided {
-  std::size_t best_only = 0;
-  std::size_t other_only = 0;
-};
-
-OneSided one_sided(const std::vector<char>& best, const std::vector<char>& other) {
-  OneSided c;
-  for (std::size_t i = 0; i < best.size(); ++i) {
-    c.best_only += best[i] && !other[i];
-    c.other_only += other[i] && !best[i];
-  }
-  return c;
-}
-
-bool separated(std::size_t best_only, std::size_t other_only, std::size_t n, const MultiStartOptions& o) {
-  if (o.separation_z <= 0.0) return false;
-  const double b = static_cast<double>(best_only), a = static_cast<double>(other_only);
-  return b >= o.separation_min_share * static_cast<double>(n) && b >= o.separation_ratio * a &&
-         b - a > o.separation_z * std::sqrt(a + b);
-}
-
-// Higher share first, then lower truncated RMS.
-bool better(const StartReport& a, const StartReport& b) {
-  if (a.inlier_share != b.inlier_share) return a.inlier_share > b.inlier_share;
-  return a.score_mm < b.score_mm;
-}
+using detail::better;
+using detail::inliers;
+using detail::one_sided;
+using detail::OneSided;
+using detail::screened_starts;
+using detail::starts_to_probe;
+using detail::separated;
+using detail::share_of;
+using detail::size_of;
+using detail::truncated_rms;
 
 // A start's figures against the best (set by the competition in rank_starts) back to none.
 void clear_judgement(StartReport& s) {
@@ -102,102 +44,6 @@ void clear_judgement(StartReport& s) {
   s.same_up_to_free = fresh.same_up_to_free;
   s.same_when_settled = fresh.same_when_settled;
   s.ties_best = fresh.ties_best;
-}
-
-double size_of(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::AlignedBox3d box;
-  for (const Eigen::Vector3d& p : points) box.extend(p);
-  return box.diagonal().norm();
-}
-
-// f(i) for every i < n, one i a thread. An exception must not leave a parallel region: the first in index order is
-// rethrown after the loop.
-template <typename F>
-void for_each_in_parallel(std::size_t n, const F& f) {
-  std::vector<std::exception_ptr> failed(n);
-  const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    try {
-      f(i);
-    } catch (...) {
-      failed[i] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& e : failed) {
-    if (e) std::rethrow_exception(e);
-  }
-}
-
-// The shifted starts worth a full probe, best first: each screened by a quick probe (wall_screen_iterations steps on
-// `few` points; where its ICP lands decides, not the start itself: a scan a wall off is often turned a few degrees as
-// well, and the start's own share is near 0), the wall_probes best by inlier share within share_margin of
-// `best_share` (the best pose's on the same points): none when the right pose was already found.
-// With `apart` (slides: many shifts land on one pose), a start is kept only where its quick probe lands apart from
-// those of the starts kept before it.
-std::vector<CoarseStart> screened_starts(
-    const std::vector<CoarseStart>& shifted, const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
-    const MultiStartOptions& options, double reach, double best_share,
-    const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& apart = nullptr) {
-  std::vector<double> share(shifted.size(), -1.0);
-  std::vector<Eigen::Isometry3d> landed(shifted.size(), Eigen::Isometry3d::Identity());
-  for_each_in_parallel(shifted.size(), [&](std::size_t i) {
-    IcpOptions quick = options.probe;
-    quick.progress = nullptr;
-    quick.max_iterations = options.wall_screen_iterations;
-    const IcpResult r = icp(few, reference, shifted[i].T_ref_scan, quick);
-    share[i] = share_of(inliers(few, r.T_ref_scan, reference, options.inlier_distance_mm, reach));
-    landed[i] = r.T_ref_scan;
-  });
-  std::vector<std::size_t> order(shifted.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return share[a] > share[b]; });
-  std::vector<CoarseStart> kept;
-  std::vector<std::size_t> kept_index;
-  for (std::size_t k = 0; k < shifted.size() && kept.size() < options.wall_probes; ++k) {
-    const std::size_t i = order[k];
-    if (share[i] < (1.0 - options.share_margin) * best_share) break;
-    if (apart && std::any_of(kept_index.begin(), kept_index.end(),
-                             [&](std::size_t j) { return !apart(landed[j], landed[i]); })) {
-      continue;
-    }
-    kept.push_back(shifted[i]);
-    kept_index.push_back(i);
-  }
-  return kept;
-}
-
-// The starts given, those marked for screening (CoarseStart::screen: a tube's fine turns about its axis) screened by
-// a quick probe each on `few`: of the wall_probes best by share, those whose quick probes land apart (distinct_deg,
-// or 10 inlier distances and 1 % of the scan's size `size_mm` at its centre) are probed with the rest. Without
-// inlier scoring, wall_probes of them evenly spread.
-std::vector<CoarseStart> starts_to_probe(const std::vector<CoarseStart>& starts,
-                                         const std::vector<Eigen::Vector3d>& few, const IcpReference& reference,
-                                         const MultiStartOptions& options, double reach, const Eigen::Vector3d& centre,
-                                         double size_mm) {
-  std::vector<CoarseStart> given;
-  std::vector<CoarseStart> to_screen;
-  for (const CoarseStart& s : starts) (s.screen ? to_screen : given).push_back(s);
-  if (to_screen.empty()) return given;
-  std::vector<CoarseStart> kept;
-  if (options.inlier_distance_mm > 0.0) {
-    const double screen_mm = std::max(10.0 * options.inlier_distance_mm, 0.01 * size_mm);
-    const double screen_rad = options.distinct_deg * M_PI / 180.0;
-    kept = screened_starts(to_screen, few, reference, options, reach, 0.0,
-                           [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-                             return rotation_angle(b * a.inverse()) > screen_rad ||
-                                    (b * centre - a * centre).norm() > screen_mm;
-                           });
-  } else {
-    const std::size_t stride =
-        std::max<std::size_t>(1, to_screen.size() / std::max<std::size_t>(1, options.wall_probes));
-    for (std::size_t i = 0; i < to_screen.size() && kept.size() < options.wall_probes; i += stride) {
-      kept.push_back(to_screen[i]);
-    }
-  }
-  given.insert(given.end(), kept.begin(), kept.end());
-  return given;
 }
 
 // The finite screw motion of a scaled twist x = (w L, v) about c: rotation |w| about the axis through
