@@ -205,11 +205,6 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
   const double floor = std::max(largest * 1e-15, 1e-300);
   const Eigen::Index k = report.eigenvalues.size();
   const Eigen::MatrixXd U = P * solver.eigenvectors();
-  Eigen::VectorXd gaussians(k);
-  for (Eigen::Index i = 0; i < k; ++i) {
-    // sigma^2 (N H)^-1 along the eigenvector: what decides the holds below.
-    gaussians(i) = noise_mm * noise_mm / (count * std::max(report.eigenvalues(i), floor));
-  }
   // The covariance from the robust fit's own bread (PlaneNormalMatrix::bread), H when it is not known.
   Eigen::MatrixXd Ub = U;
   Eigen::VectorXd lambdas = report.eigenvalues;
@@ -243,7 +238,8 @@ DegeneracyReport analyze_constraint(const PlaneNormalMatrix& matrix, double nois
     d.relative_eigenvalue = largest > 0.0 ? report.eigenvalues(i) / largest : 0.0;
     d.std_rad = std::sqrt(variance) * d.rotation.norm();
     d.std_mm = std::sqrt(variance) * d.translation.norm();
-    const double gaussian_std = std::sqrt(gaussians(i));
+    // sigma / sqrt(N lambda) along H's eigenvector: what decides the hold, whatever the kernel discounts.
+    const double gaussian_std = noise_mm / std::sqrt(count * std::max(report.eigenvalues(i), floor));
     // A direction measured within a factor of ten of the best (in std) is never held: holding it cannot beat the
     // data, however noisy (a LiDAR scene's residuals are centimetres).
     // Held only where the data cannot do better than the start: loose beyond the tolerance and the start's std.

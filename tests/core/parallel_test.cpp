@@ -15,19 +15,21 @@ namespace conform {
 namespace {
 
 TEST(ForEachInParallel, RunsEveryTaskOnceForAnyNumberOfThreads) {
+  const int before = omp_get_max_threads();
   for (const int threads : {1, 2, 4}) {
     omp_set_num_threads(threads);
     std::vector<int> runs(1000, 0);
     for_each_in_parallel(runs.size(), [&](std::size_t i) { runs[i] += static_cast<int>(i % 7) + 1; });
     for (std::size_t i = 0; i < runs.size(); ++i) ASSERT_EQ(runs[i], static_cast<int>(i % 7) + 1) << i;
   }
-  omp_set_num_threads(omp_get_num_procs());
+  omp_set_num_threads(before);
   int never = 0;
   for_each_in_parallel(0, [&](std::size_t) { ++never; });
   EXPECT_EQ(never, 0);
 }
 
 TEST(ForEachInParallel, TheFirstFailureInIndexOrderIsRethrownAfterEveryTask) {
+  const int before = omp_get_max_threads();
   for (const int threads : {1, 2, 4}) {
     omp_set_num_threads(threads);
     std::atomic<int> ran{0};
@@ -42,7 +44,7 @@ TEST(ForEachInParallel, TheFirstFailureInIndexOrderIsRethrownAfterEveryTask) {
     }
     EXPECT_EQ(ran.load(), 200);
   }
-  omp_set_num_threads(omp_get_num_procs());
+  omp_set_num_threads(before);
 }
 
 }  // namespace
